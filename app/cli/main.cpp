@@ -1,0 +1,28 @@
+// stickslip-cli: the headless front end of StickSlip Lab.
+#include <iostream>
+
+#include "commands.hpp"
+#include "core/version.hpp"
+
+int main(int argc, char** argv) {
+    using namespace stickslip::cli;
+    CLI::App app{"StickSlip Lab command line: simulate, sweep, analyse and fit friction-induced stick-slip"};
+    app.set_version_flag("--version", std::string("stickslip-cli ") + stickslip::kVersion);
+    app.require_subcommand(1);
+    int exitCode = kOk;
+    addSimulateCommand(app, exitCode);
+    addPresetsCommand(app, exitCode);
+    addSweepCommand(app, exitCode);
+    addMapCommand(app, exitCode);
+    addAnalyzeCommand(app, exitCode);
+    addReproduceCommand(app, exitCode);
+    addFitCommand(app, exitCode);
+    addIdentifyCommand(app, exitCode);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int rc = app.exit(e);
+        return rc == 0 ? 0 : kBadArguments;
+    }
+    return exitCode;
+}

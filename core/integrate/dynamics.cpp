@@ -1,0 +1,110 @@
+#include "dynamics.hpp"
+
+#include <cmath>
+
+namespace stickslip {
+
+const char* toString(RunStatus s) {
+    switch (s) {
+        case RunStatus::Ok: return "ok";
+        case RunStatus::Cancelled: return "cancelled";
+        case RunStatus::Failed: return "failed";
+    }
+    return "?";
+}
+
+DynamicsModel DynamicsModel::fromParams(const SimParams& p) {
+    DynamicsModel m;
+    m.rig = p.rig;
+    m.stage = StageMotion::harmonic(p.drive);
+    m.law = makeLaw(p);
+    m.dt_s = p.integration.dt_s;
+    return m;
+}
+
+DynState DynamicsModel::initialState(double t) const {
+    DynState s;
+    s.t = t;
+    s.u = stage.displacement(t);
+    return s;
+}
+
+Sample toSample(const DynamicsModel& m, const DynState& s) {
+    Sample o;
+    o.t_s = s.t;
+    o.stage_m = s.u;
+    o.slider_m = s.x;
+    o.sliderVel_mps = s.v;
+    o.relVel_mps = m.stage.velocity(s.t) - s.v;
+    o.force_N = s.law.force_N;
+    o.ratio = s.law.force_N / m.rig.normalForce_N;
+    o.alpha = s.law.alpha;
+    o.slipRate_mps = s.slipRate;
+    o.stuck = s.stuck;
+    return o;
+}
+
+RunResult simulateDynamics(const DynamicsModel& m, DynState& s, long steps, long outputEvery, bool recordStart,
+                           const RunControl& ctl) {
+    RunResult res;
+    if (outputEvery < 1) outputEvery = 1;
+    res.samples.reserve(static_cast<size_t>(steps / outputEvery + 2));
+    if (recordStart) res.samples.push_back(toSample(m, s));
+    long done = 0;
+    const long chunk = std::max<long>(outputEvery, 1L << 14) / outputEvery * outputEvery;
+    while (done < steps) {
+        const long n = std::min(chunk, steps - done);
+        long local = 0;
+        auto obs = [&](const DynState& st) {
+            ++local;
+            if (((done + local) % outputEvery) == 0) res.samples.push_back(toSample(m, st));
+        };
+        StepReport rep = advance(m, s, n, obs, ctl, done);
+        done += rep.stepsDone;
+        res.stats.steps += rep.stepsDone;
+        res.stats.newtonIterations += rep.newtonIterations;
+        res.stats.lawIterations += rep.lawIterations;
+        res.stats.stuckSteps += rep.stuckSteps;
+        if (rep.status != RunStatus::Ok) {
+            res.status = rep.status;
+            res.message = rep.message;
+            return res;
+        }
+        if (ctl.cancelled()) {
+            res.status = RunStatus::Cancelled;
+            res.message = "cancelled";
+            return res;
+        }
+        if (ctl.progress) ctl.progress(static_cast<double>(done) / static_cast<double>(steps));
+    }
+    return res;
+}
+
+RunResult simulateDynamics(const SimParams& p, const RunControl& ctl) {
+    const ParamIssues issues = p.validate();
+    if (!issues.empty()) {
+        RunResult r;
+        r.status = RunStatus::Failed;
+        r.message = formatIssues(issues);
+        return r;
+    }
+    const DynamicsModel m = DynamicsModel::fromParams(p);
+    DynState s = m.initialState(0.0);
+    const double T = p.drive.period();
+    const long transientSteps = std::lround(p.transientCycles * T / p.integration.dt_s);
+    const long recSteps = std::lround(p.cycles * T / p.integration.dt_s);
+    if (transientSteps > 0) {
+        RunControl quiet;
+        quiet.cancel = ctl.cancel;
+        StepReport rep = advanceQuiet(m, s, transientSteps, quiet);
+        if (rep.status != RunStatus::Ok) {
+            RunResult r;
+            r.status = rep.status;
+            r.message = rep.message;
+            return r;
+        }
+    }
+    return simulateDynamics(m, s, recSteps, p.integration.outputEvery(), true, ctl);
+}
+
+}  // namespace stickslip

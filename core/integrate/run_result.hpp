@@ -1,0 +1,51 @@
+// What a run returns: a status, a message and the samples it produced — never NaNs.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace stickslip {
+
+// One output sample (per the issue: t, u, x, ẋ, V, F, F/t_N, α, stuck, plus slip rate).
+struct Sample {
+    double t_s = 0;             // time
+    double stage_m = 0;         // u, stage displacement
+    double slider_m = 0;        // x, slider displacement
+    double sliderVel_mps = 0;   // ẋ
+    double relVel_mps = 0;      // V = u̇ − ẋ
+    double force_N = 0;         // F
+    double ratio = 0;           // F / t_N
+    double alpha = 0;           // α
+    double slipRate_mps = 0;    // λ̇ = Δλ/Δt (0 while stuck)
+    bool stuck = true;          // the last step was elastic
+};
+
+enum class RunStatus { Ok, Cancelled, Failed };
+const char* toString(RunStatus);
+
+struct RunStats {
+    long steps = 0;             // time steps taken
+    long lawIterations = 0;     // local return-map iterations, summed
+    long newtonIterations = 0;  // global (slider) Newton iterations, summed
+    long stuckSteps = 0;
+};
+
+struct RunResult {
+    RunStatus status = RunStatus::Ok;
+    std::string message;           // empty when Ok
+    std::vector<Sample> samples;   // what was computed up to the end (or the failure/cancel)
+    RunStats stats;
+    bool ok() const { return status == RunStatus::Ok; }
+};
+
+// Cooperative cancellation and progress. The run polls `cancel` every block of steps
+// and returns what it has with RunStatus::Cancelled.
+struct RunControl {
+    const std::atomic<bool>* cancel = nullptr;
+    std::function<void(double fraction)> progress;  // called from the running thread
+    bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+};
+
+}  // namespace stickslip

@@ -1,0 +1,27 @@
+// Stage displacement u(t): harmonic (the paper's drive) or tabulated (measured runs).
+#pragma once
+
+#include <vector>
+
+#include "../params.hpp"
+
+namespace stickslip {
+
+class StageMotion {
+public:
+    // u(t) = A sin(ω t + φ)
+    static StageMotion harmonic(const DriveParams& d);
+    // u(t) linearly interpolated in (t, u); t strictly increasing, at least two samples.
+    // Outside the table u is held at the end values.
+    static StageMotion tabulated(std::vector<double> t_s, std::vector<double> u_m);
+
+    double displacement(double t) const;
+    double velocity(double t) const;
+    bool isHarmonic() const { return table_t_.empty(); }
+
+private:
+    double A_ = 0, omega_ = 0, phase_ = 0;
+    std::vector<double> table_t_, table_u_;
+};
+
+}  // namespace stickslip

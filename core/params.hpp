@@ -1,0 +1,105 @@
+// Parameters of the rig, the drive, the friction laws and the integration, as named
+// value types with SI units beside every field. Defaults are the paper's Fig. 20 set
+// (../shared/MODEL.md). Every struct has validate() returning *all* violated fields.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace stickslip {
+
+// One violated constraint: which field, what value it had, what is allowed.
+struct ParamIssue {
+    std::string field;    // e.g. "tN"
+    double value = 0.0;   // offending value
+    std::string allowed;  // e.g. "> 0"
+    std::string message() const;  // "tN = -1 is out of range: must be > 0"
+};
+
+using ParamIssues = std::vector<ParamIssue>;
+
+// Stage motion u(t) = A sin(2π f t + phase).
+struct DriveParams {
+    double amplitude_m = 1.0e-3;   // A, zero-to-peak stage amplitude [m]
+    double frequency_Hz = 3.0;     // f, forcing frequency [Hz]
+    double phase_rad = 0.0;        // initial stage phase [rad]
+    ParamIssues validate() const;
+    double omega() const;          // 2π f [rad/s]
+    double period() const;         // 1/f [s]
+};
+
+// The 1-DOF slider (paper Fig. 15b, Eq. 8): m* ẍ + c ẋ + k x = F.
+struct RigParams {
+    double normalForce_N = 6.2;          // t_N, normal load [N]
+    double stiffness_N_per_m = 8446.0;   // k, beam stiffness [N/m]
+    double mass_kg = 0.53;               // m*, effective mass [kg]
+    double damping_Ns_per_m = 0.669;     // c, viscous damping [N s/m] (≈ 0.5 % of critical)
+    ParamIssues validate() const;
+    double naturalFrequency_rad_s() const;   // sqrt(k/m)
+    double dampingRatio() const;             // c / (2 sqrt(k m))
+};
+
+// c for a given damping ratio ζ: c = 2 ζ sqrt(k m).
+double dampingFromRatio(double zeta, double stiffness_N_per_m, double mass_kg);
+
+// Elasto-viscoplastic rate- and state-dependent law (Eqs. 1–4).
+struct RateStateParams {
+    double mu = 0.25;                 // μ, static coefficient of friction [-]
+    double eta_s_per_m = 0.6;         // η, fluidity (viscosity) [s/m]
+    double Dc_m = 20.0e-6;            // D_c, critical slip distance [m]
+    double C1 = 0.25;                 // C1, amplitude of K1(α) [-]
+    double r = 1.0;                   // r, scale of α in K1(α) = C1 (exp(α/r) − 1) [-]
+    double vc_mps = 0.1;              // v_c = 1/C2, characteristic velocity [m/s]
+    double epsT_N_per_m = 1.0e6;      // ε_T, tangential penalty stiffness [N/m]
+    ParamIssues validate() const;
+    double C2() const { return 1.0 / vc_mps; }  // [s/m]
+};
+
+// Ideal elasto-plastic Coulomb law: Φ = |F| − μ t_N.
+struct CoulombParams {
+    double mu = 0.25;                 // μ [-]
+    double epsT_N_per_m = 1.0e6;      // ε_T [N/m]
+    ParamIssues validate() const;
+};
+
+struct IntegrationParams {
+    double dt_s = 1.0 / 30000.0;            // time step [s] (T/10 000 at 3 Hz)
+    double outputInterval_s = 5.0e-4;       // output sample spacing [s]; rounded to a multiple of dt
+    ParamIssues validate() const;
+    // Number of steps between output samples (≥ 1).
+    long outputEvery() const;
+};
+
+enum class LawKind { RateState, Coulomb };
+enum class SetupKind { Dynamics, Prescribed };
+
+const char* toString(LawKind);
+const char* toString(SetupKind);
+bool parseLawKind(const std::string&, LawKind&);
+bool parseSetupKind(const std::string&, SetupKind&);
+
+// Everything a simulation needs. Immutable during a run.
+struct SimParams {
+    DriveParams drive;
+    RigParams rig;
+    LawKind law = LawKind::RateState;
+    SetupKind setup = SetupKind::Dynamics;
+    RateStateParams rateState;
+    CoulombParams coulomb;
+    IntegrationParams integration;
+    double cycles = 20.0;            // recorded forcing cycles [-]
+    double transientCycles = 0.0;    // cycles simulated and discarded first [-]
+    ParamIssues validate() const;    // all of the above, fields prefixed by nothing (keys as in the CLI)
+};
+
+// "tN = -1 is out of range: must be > 0; k = ..." — one line per issue.
+std::string formatIssues(const ParamIssues&);
+
+// Keys as used on the command line and in sessions: A f phase tN k m c mu eta Dc C1 r vc epsT dt output_every cycles transient.
+// The μ and ε_T keys set both the rate-state and the Coulomb law.
+// Returns false (and an explanation) for an unknown key.
+bool setParam(SimParams&, const std::string& key, double value, std::string* error = nullptr);
+bool getParam(const SimParams&, const std::string& key, double& value);
+std::vector<std::string> paramKeys();
+
+}  // namespace stickslip
