@@ -18,8 +18,9 @@ double RateStateLaw::steadyStateRatio(double v) const {
 }
 
 // Return mapping (backward Euler on λ and α, as in computational plasticity).
+// (ε below is the return stiffness k_r: ε_T for the bare law; ε_T K/(K+ε_T) in series.)
 //
-// Elastic predictor:  F_tr = F_n + ε Δg,  a = |F_tr|,  s = sign F_tr,
+// Elastic predictor:  F_tr = F_n + ε_T Δg,  a = |F_tr|,  s = sign F_tr,
 //                     Φ_tr = a − t_N (μ + K1(α_n)).
 // If Φ_tr ≤ 0 the step is elastic (stick): F = F_tr, α = α_n, dF/dΔg = ε.
 // Otherwise, with the unknown slip increment Δλ > 0 (radial return keeps s):
@@ -33,49 +34,65 @@ double RateStateLaw::steadyStateRatio(double v) const {
 // so [0, Δλ_max] with Δλ_max = (Φ_tr + t_N(K1(α_n)+C1)) / (ε + η t_N/Δt) brackets a root.
 // We solve by Newton safeguarded with bisection inside the bracket: it always converges.
 //
-// Consistent tangent: R depends on Δg only through a (∂R/∂a = 1, ∂a/∂Δg = s ε), hence
-//   dΔλ/dΔg = −s ε / R',  dF/dΔg = s (s ε − ε dΔλ/dΔg) = ε (1 + ε/R'),
+// Consistent tangent: R depends on Δg only through a (∂R/∂a = 1, ∂a/∂Δg = s ε_T), hence
+//   dΔλ/dΔg = −s ε_T / R',  dF/dΔg = s (s ε_T − ε dΔλ/dΔg) = ε_T (1 + ε/R'),
 // with R' = dR/dΔλ = −ε − η t_N/Δt − t_N K1'(α) dα/dΔλ.
-ReturnMapResult RateStateLaw::returnMap(const LawState& st, double dg, double dt, double tN) const {
+RateStateLaw::Prepared RateStateLaw::prepare(double kr, double dt, double tN) const {
     const RateStateParams& p = params;
-    const double eps = p.epsT_N_per_m;
+    Prepared q;
+    q.epsT = p.epsT_N_per_m;
+    q.kr = kr;
+    q.tN = tN;
+    q.muTN = p.mu * tN;
+    q.C1 = p.C1;
+    q.C1TN = p.C1 * tN;
+    q.invR = 1.0 / p.r;
+    q.invDc = 1.0 / p.Dc_m;
+    q.visc = p.eta_s_per_m * tN / dt;      // η t_N / Δt  [N/m]
+    q.c2q = q.invDc / (p.vc_mps * dt);     // C2 / (D_c Δt) [1/m²]
+    q.krPlusVisc = kr + q.visc;
+    return q;
+}
+
+ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, double trial) const {
     ReturnMapResult res;
-    const double trial = st.force_N + eps * dg;
+    const double eps = kr;
     const double a = std::abs(trial);
-    const double phiTrial = a - tN * (p.mu + K1(st.alpha));
+    const double e0 = std::exp(st.alpha * invR);     // exp(α_n / r)
+    const double K1n = C1 * (e0 - 1.0);
+    const double phiTrial = a - muTN - tN * K1n;      // Φ_trial, Eq. 1
+    res.state = st;
     if (phiTrial <= 0.0) {
-        res.state = {trial, st.alpha};
-        res.tangent_N_per_m = eps;
+        res.state.force_N = trial;
+        res.tangent_N_per_m = epsT;
         res.stuck = true;
         return res;
     }
     res.stuck = false;
     const double s = trial >= 0.0 ? 1.0 : -1.0;
-    const double C2 = p.C2();
-    const double invDc = 1.0 / p.Dc_m;
-    const double visc = p.eta_s_per_m * tN / dt;   // η t_N / Δt  [N/m]
-    const double c2q = C2 * invDc / dt;            // C2 / (D_c Δt) [1/m²]
-    const double invR = 1.0 / p.r;
 
-    // Residual and derivative at Δλ = x; also returns α(x).
+    // Residual R and R' at Δλ = x; also α(x).
     auto eval = [&](double x, double& R, double& dR, double& alpha) {
-        const double num = st.alpha - c2q * x * x;
-        const double den = 1.0 + x * invDc;
-        alpha = num / den;
-        const double dalpha = (-2.0 * c2q * x - alpha * invDc) / den;
+        const double invDen = 1.0 / (1.0 + x * invDc);
+        alpha = (st.alpha - c2q * x * x) * invDen;
+        const double dalpha = (-2.0 * c2q * x - alpha * invDc) * invDen;
         const double e = std::exp(alpha * invR);
-        R = a - eps * x - tN * (p.mu + p.C1 * (e - 1.0)) - visc * x;
-        dR = -eps - visc - tN * p.C1 * invR * e * dalpha;
+        R = a - eps * x - muTN - C1TN * (e - 1.0) - visc * x;
+        dR = -krPlusVisc - C1TN * invR * e * dalpha;
     };
 
     double lo = 0.0;
-    double hi = (phiTrial + tN * (K1(st.alpha) + p.C1)) / (eps + visc);
-    double R = 0, dR = 0, alpha = st.alpha;
+    double hi = (phiTrial + tN * (K1n + C1)) / krPlusVisc;
+    double R = phiTrial, alpha = st.alpha;
+    // R'(0) from the exponential already at hand: dα/dΔλ(0) = −α_n / D_c.
+    double dR = -krPlusVisc + C1TN * invR * e0 * st.alpha * invDc;
     // Keep the force from changing sign (possible only when C1 > μ at extreme rates).
     if (hi * eps > a) {
-        eval(a / eps, R, dR, alpha);
-        if (R > 0.0) {
-            res.state = {0.0, alpha};
+        double Ra = 0, dRa = 0, alphaA = 0;
+        eval(a / eps, Ra, dRa, alphaA);
+        if (Ra > 0.0) {
+            res.state.force_N = 0.0;
+            res.state.alpha = alphaA;
             res.slipIncrement_m = a / eps;
             res.tangent_N_per_m = 0.0;
             return res;
@@ -83,27 +100,28 @@ ReturnMapResult RateStateLaw::returnMap(const LawState& st, double dg, double dt
         hi = a / eps;
     }
 
-    // Newton from the linearised first guess (exact when K1 is constant).
-    double x = phiTrial / (eps + visc);
-    if (x > hi) x = 0.5 * (lo + hi);
+    // Safeguarded Newton from Δλ = 0 (R(0) = Φ_trial > 0, so 0 is the lower bracket).
     const double ftol = 1e-13 * (a + tN);
-    const double xtol = 1e-15 * hi + 1e-300;
+    double x = 0.0;
     int it = 0;
     bool ok = false;
     for (; it < 200; ++it) {
-        eval(x, R, dR, alpha);
-        if (std::abs(R) <= ftol) { ok = true; break; }
-        if (R > 0.0) lo = x; else hi = x;
         double xn = (dR < 0.0) ? x - R / dR : 0.5 * (lo + hi);
         if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);  // bisection safeguard
-        if (std::abs(xn - x) <= xtol || hi - lo <= xtol) { x = xn; eval(x, R, dR, alpha); ok = true; break; }
+        const double step = std::abs(xn - x);
         x = xn;
+        eval(x, R, dR, alpha);
+        if (R > 0.0) lo = x; else hi = x;
+        // Newton converges quadratically: after a step of relative size 1e-7 the error of the
+        // new iterate is ~1e-14 relative, below what the step's own truncation error can see.
+        if (std::abs(R) <= ftol || step <= 1e-7 * x || hi - lo <= 1e-15 * hi) { ok = true; break; }
     }
     res.iterations = it + 1;
     res.converged = ok;
     res.slipIncrement_m = x;
-    res.state = {s * (a - eps * x), alpha};
-    res.tangent_N_per_m = (dR < 0.0) ? eps * (1.0 + eps / dR) : 0.0;
+    res.state.force_N = s * (a - eps * x);
+    res.state.alpha = alpha;
+    res.tangent_N_per_m = (dR < 0.0) ? epsT * (1.0 + eps / dR) : 0.0;
     return res;
 }
 

@@ -14,7 +14,25 @@ struct RateStateLaw {
     RateStateParams params;
 
     // Backward-Euler return mapping over one step (derivation in rate_state.cpp).
-    ReturnMapResult returnMap(const LawState& s, double dg_m, double dt_s, double normalForce_N) const;
+    ReturnMapResult returnMap(const LawState& s, double dg_m, double dt_s, double normalForce_N) const {
+        return returnMapFromTrial(s, s.force_N + params.epsT_N_per_m * dg_m, params.epsT_N_per_m, dt_s, normalForce_N);
+    }
+    // The same return mapping from a given elastic trial force, with the force falling by
+    // `returnStiffness` per unit slip: ε_T alone for the bare law, or ε_T K/(K + ε_T) when the
+    // contact is in series with a structure of stiffness K (the condensed Newmark step).
+    // tangent_N_per_m is dF/d(trial force) · ε_T.
+    ReturnMapResult returnMapFromTrial(const LawState& s, double trialForce_N, double returnStiffness_N_per_m,
+                                       double dt_s, double normalForce_N) const {
+        return prepare(returnStiffness_N_per_m, dt_s, normalForce_N).returnMapFromTrial(s, trialForce_N);
+    }
+
+    // The return map with every constant of a step (k_r, Δt, t_N) computed once: the form
+    // used inside time loops, where these do not change from step to step.
+    struct Prepared {
+        double epsT, kr, tN, muTN, C1, C1TN, invR, invDc, visc, c2q, krPlusVisc;
+        ReturnMapResult returnMapFromTrial(const LawState& s, double trialForce_N) const;
+    };
+    Prepared prepare(double returnStiffness_N_per_m, double dt_s, double normalForce_N) const;
 
     double K1(double alpha) const;                                    // Eq. 1
     double slipFunction(const LawState& s, double normalForce_N) const;  // Φ [N]

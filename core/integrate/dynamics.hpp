@@ -7,11 +7,22 @@
 //   r(x)    = K_eff x − b − F(Δg),   Δg = (u_{n+1} − u_n) − (x − x_n),
 //   K_eff   = 4m/h² + 2c/h + k,      b = m (4/h² (x_n + h v_n) + a_n) + c (2/h x_n + v_n),
 // by Newton with the consistent tangent: dr/dx = K_eff + dF/dΔg. The first iterate is the
-// elastic (stick) predictor, which is exact when the step sticks, so a stuck step costs one
+// elastic (stick) predictor x*, which is exact when the step sticks, so a stuck step costs one
 // law evaluation. Unconditionally stable; the step is set by accuracy alone.
+//
+// Static condensation (the default, Coupling::Condensed): r is linear in x apart from F, and
+// in a slipping step F = F* + ε_T (x* − x) − s ε_T Δλ with F* = K_eff x* − b the predictor
+// force. Eliminating x from r = 0 gives x − x* = (F − F*)/K_eff and
+//   F = F* − s ε_eff Δλ,   ε_eff = ε_T K_eff / (K_eff + ε_T),
+// i.e. the coupled system is the law's own scalar return map from the trial F* with the return
+// stiffness ε_eff (the contact in series with the structure). Its root is the fixed point of the
+// monolithic Newton iteration, reached with one bracketed scalar solve instead of nested
+// iterations. Coupling::Newton keeps the monolithic iteration (for laws without
+// returnMapFromTrial, and to verify that both paths agree).
 #pragma once
 
 #include <cmath>
+#include <concepts>
 #include <cstdio>
 #include <string>
 #include <variant>
@@ -35,12 +46,15 @@ struct DynState {
     bool stuck = true;   // last step was elastic
 };
 
+enum class Coupling { Condensed, Newton };
+
 // Constant model of a dynamics run.
 struct DynamicsModel {
     RigParams rig;
     StageMotion stage = StageMotion::harmonic(DriveParams{});
     FrictionLaw law;
     double dt_s = 1.0 / 30000.0;
+    Coupling coupling = Coupling::Condensed;
 
     static DynamicsModel fromParams(const SimParams& p);
     // State at rest at time t: x = v = 0, F = 0, α = 0, u = u(t).
@@ -64,32 +78,92 @@ inline std::string stepFailure(long step, double t, const char* what, double val
     return buf;
 }
 
-// One Newmark step; returns false (with a message in `why`) if it cannot converge.
 template <class Law>
-inline bool newmarkStep(const RigParams& rig, const Law& law, const StageMotion& stage, double h, DynState& s,
-                        int& newtonIts, int& lawIts, const char*& why, double& badValue) {
-    const double m = rig.mass_kg, c = rig.damping_Ns_per_m, k = rig.stiffness_N_per_m, tN = rig.normalForce_N;
-    const double t1 = s.t + h;
-    const double u1 = stage.displacement(t1);
+concept HasPreparedReturnMap = requires(const Law& l, const LawState& s) {
+    { l.prepare(0.0, 0.0, 0.0).returnMapFromTrial(s, 0.0) } -> std::same_as<ReturnMapResult>;
+};
+
+// Constants of a run's steps (h, m, c, k, t_N fixed), computed once.
+struct NewmarkConstants {
+    double h, m, c, k, tN, i4h2, i2h, Keff, invKeff, eps, invPredictor, returnStiffness;
+    NewmarkConstants(const RigParams& rig, double epsT, double dt)
+        : h(dt), m(rig.mass_kg), c(rig.damping_Ns_per_m), k(rig.stiffness_N_per_m), tN(rig.normalForce_N),
+          i4h2(4.0 / (dt * dt)), i2h(2.0 / dt), Keff(m * i4h2 + c * i2h + k), invKeff(1.0 / Keff), eps(epsT),
+          invPredictor(1.0 / (Keff + epsT)), returnStiffness(epsT * Keff / (Keff + epsT)) {}
+};
+
+// u(t_n) for consecutive steps: exact for tabulated motion; for harmonic motion a rotation
+// recurrence (one multiply-add pair instead of a sin per step), re-anchored to the exact
+// sine every 256 steps so round-off cannot accumulate.
+class StageSequence {
+public:
+    StageSequence(const StageMotion& m, double t0, double h) : m_(m), t0_(t0), h_(h), harmonic_(m.isHarmonic()) {
+        if (harmonic_) {
+            cr_ = std::cos(m.omega() * h);
+            sr_ = std::sin(m.omega() * h);
+            anchor(0);
+        }
+    }
+    // Stage displacement at t0 + i h, for i = 1, 2, ... in order.
+    double next() {
+        ++i_;
+        if (!harmonic_) return m_.displacement(t0_ + static_cast<double>(i_) * h_);
+        if ((i_ & 255) == 0) { anchor(i_); return m_.amplitude() * s_; }
+        const double s1 = s_ * cr_ + c_ * sr_;
+        c_ = c_ * cr_ - s_ * sr_;
+        s_ = s1;
+        return m_.amplitude() * s_;
+    }
+
+private:
+    void anchor(long i) {
+        const double th = m_.omega() * (t0_ + static_cast<double>(i) * h_) + m_.phase();
+        s_ = std::sin(th);
+        c_ = std::cos(th);
+    }
+    const StageMotion& m_;
+    double t0_, h_;
+    bool harmonic_;
+    double cr_ = 1, sr_ = 0, s_ = 0, c_ = 1;
+    long i_ = 0;
+};
+
+// One Newmark step to stage displacement u1 at s.t + h; false (with `why`) if it cannot converge.
+// `prep` is the law prepared for the condensed return map (law.prepare), used when the law
+// has one and the coupling is Condensed.
+template <class Law, class Prepared>
+inline bool newmarkStep(const NewmarkConstants& K, const Law& law, const Prepared* prep, double u1, DynState& s,
+                        Coupling coupling, int& newtonIts, int& lawIts, const char*& why, double& badValue) {
+    const double h = K.h;
     const double du = u1 - s.u;
-    const double i4h2 = 4.0 / (h * h), i2h = 2.0 / h;
-    const double Keff = m * i4h2 + c * i2h + k;
-    const double b = m * (i4h2 * (s.x + h * s.v) + s.a) + c * (i2h * s.x + s.v);
-    const double eps = law.epsT();
+    const double b = K.m * (K.i4h2 * (s.x + h * s.v) + s.a) + K.c * (K.i2h * s.x + s.v);
+    const double eps = K.eps;
     // Elastic predictor: F = F_n + ε Δg is linear in x.
-    double x = (b + s.law.force_N + eps * (du + s.x)) / (Keff + eps);
-    ReturnMapResult rm = law.returnMap(s.law, du - (x - s.x), h, tN);
-    lawIts += rm.iterations;
+    double x = (b + s.law.force_N + eps * (du + s.x)) * K.invPredictor;
+    ReturnMapResult rm;
     newtonIts = 1;
-    if (!rm.stuck) {
+    bool solved = false;
+    if constexpr (HasPreparedReturnMap<Law>) {
+        if (coupling == Coupling::Condensed && prep) {
+            const double Ftrial = s.law.force_N + eps * (du - (x - s.x));
+            rm = prep->returnMapFromTrial(s.law, Ftrial);
+            lawIts += rm.iterations;
+            if (!rm.converged) { why = "return mapping did not converge (slip increment)"; badValue = rm.slipIncrement_m; return false; }
+            if (!rm.stuck) x += (rm.state.force_N - Ftrial) * K.invKeff;
+            solved = true;
+        }
+    }
+    if (!solved) rm = law.returnMap(s.law, du - (x - s.x), h, K.tN);
+    if (!solved) lawIts += rm.iterations;
+    if (!solved && !rm.stuck) {
         bool ok = false;
         const double xtol = 1e-13 * (std::abs(s.x) + std::abs(du)) + 1e-18;
         for (int it = 0; it < 60; ++it) {
-            const double r = Keff * x - b - rm.state.force_N;
-            const double J = Keff + rm.tangent_N_per_m;
+            const double r = K.Keff * x - b - rm.state.force_N;
+            const double J = K.Keff + rm.tangent_N_per_m;
             const double dx = r / J;
             x -= dx;
-            rm = law.returnMap(s.law, du - (x - s.x), h, tN);
+            rm = law.returnMap(s.law, du - (x - s.x), h, K.tN);
             lawIts += rm.iterations;
             ++newtonIts;
             if (!rm.converged) { why = "return mapping did not converge (slip increment)"; badValue = rm.slipIncrement_m; return false; }
@@ -97,39 +171,65 @@ inline bool newmarkStep(const RigParams& rig, const Law& law, const StageMotion&
         }
         if (!ok) { why = "slider Newton iteration did not converge (x)"; badValue = x; return false; }
     }
-    const double a1 = i4h2 * (x - s.x - h * s.v) - s.a;
-    const double v1 = i2h * (x - s.x) - s.v;
+    const double a1 = K.i4h2 * (x - s.x - h * s.v) - s.a;
+    const double v1 = K.i2h * (x - s.x) - s.v;
     if (!std::isfinite(x) || !std::isfinite(v1) || !std::isfinite(a1)) { why = "non-finite slider state (x)"; badValue = x; return false; }
     if (!std::isfinite(rm.state.force_N) || !std::isfinite(rm.state.alpha)) { why = "non-finite friction force (F)"; badValue = rm.state.force_N; return false; }
-    s.t = t1; s.x = x; s.v = v1; s.a = a1; s.u = u1;
+    s.t += h; s.x = x; s.v = v1; s.a = a1; s.u = u1;
     s.law = rm.state;
-    s.slipRate = rm.slipIncrement_m / h;
+    s.slipRate = rm.slipIncrement_m * K.i2h * 0.5;
     s.stuck = rm.stuck;
     return true;
+}
+
+// Convenience form of one step (constants recomputed each call; monolithic Newton coupling).
+// Time loops should use advance(), which prepares the constants once.
+template <class Law>
+inline bool newmarkStep(const RigParams& rig, const Law& law, const StageMotion& stage, double h, DynState& s,
+                        int& newtonIts, int& lawIts, const char*& why, double& badValue) {
+    const NewmarkConstants K(rig, law.epsT(), h);
+    const double u1 = stage.displacement(s.t + h);
+    return newmarkStep(K, law, static_cast<const int*>(nullptr), u1, s, Coupling::Newton, newtonIts, lawIts, why,
+                       badValue);
 }
 
 template <class Law, class Obs>
 StepReport advanceWith(const DynamicsModel& m, const Law& law, DynState& s, long n, Obs& obs, const RunControl& ctl,
                        long stepOffset) {
     StepReport rep;
-    const long block = 4096;
-    for (long i = 0; i < n; ++i) {
-        if ((i % block) == 0 && i > 0) {
-            if (ctl.cancelled()) { rep.status = RunStatus::Cancelled; rep.message = "cancelled"; return rep; }
+    const NewmarkConstants K(m.rig, law.epsT(), m.dt_s);
+    StageSequence stage(m.stage, s.t, m.dt_s);
+    const double t0 = s.t;
+    auto run = [&](const auto* prep) {
+        const long block = 4096;
+        for (long i = 0; i < n; ++i) {
+            if ((i % block) == 0 && i > 0 && ctl.cancelled()) {
+                rep.status = RunStatus::Cancelled;
+                rep.message = "cancelled";
+                return;
+            }
+            int nIts = 0, lIts = 0;
+            const char* why = nullptr;
+            double bad = 0;
+            const double u1 = stage.next();
+            if (!newmarkStep(K, law, prep, u1, s, m.coupling, nIts, lIts, why, bad)) {
+                rep.status = RunStatus::Failed;
+                rep.message = stepFailure(stepOffset + i + 1, s.t + m.dt_s, why, bad);
+                return;
+            }
+            s.t = t0 + static_cast<double>(i + 1) * m.dt_s;  // no drift from repeated addition
+            rep.newtonIterations += nIts;
+            rep.lawIterations += lIts;
+            rep.stuckSteps += s.stuck ? 1 : 0;
+            ++rep.stepsDone;
+            obs(s);
         }
-        int nIts = 0, lIts = 0;
-        const char* why = nullptr;
-        double bad = 0;
-        if (!newmarkStep(m.rig, law, m.stage, m.dt_s, s, nIts, lIts, why, bad)) {
-            rep.status = RunStatus::Failed;
-            rep.message = stepFailure(stepOffset + i + 1, s.t + m.dt_s, why, bad);
-            return rep;
-        }
-        rep.newtonIterations += nIts;
-        rep.lawIterations += lIts;
-        rep.stuckSteps += s.stuck ? 1 : 0;
-        ++rep.stepsDone;
-        obs(s);
+    };
+    if constexpr (HasPreparedReturnMap<Law>) {
+        const auto prep = law.prepare(K.returnStiffness, K.h, K.tN);
+        run(&prep);
+    } else {
+        run(static_cast<const int*>(nullptr));
     }
     return rep;
 }

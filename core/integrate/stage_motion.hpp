@@ -18,6 +18,9 @@ public:
     double displacement(double t) const;
     double velocity(double t) const;
     bool isHarmonic() const { return table_t_.empty(); }
+    double amplitude() const { return A_; }   // harmonic only [m]
+    double omega() const { return omega_; }    // harmonic only [rad/s]
+    double phase() const { return phase_; }    // harmonic only [rad]
 
 private:
     double A_ = 0, omega_ = 0, phase_ = 0;

@@ -1,0 +1,287 @@
+#include "simulation_controller.hpp"
+
+#include <QtConcurrent/QtConcurrentRun>
+#include <algorithm>
+#include <cmath>
+#include <future>
+
+#include "core/analysis/correlation.hpp"
+#include "core/analysis/spectrum.hpp"
+#include "core/integrate/simulate.hpp"
+
+namespace stickslip::gui {
+
+namespace {
+
+// Spectrum and autocorrelation of the signal that moves in this set-up: the slider
+// displacement x for the rig, F/t_N for the block with prescribed slip (where x ≡ 0).
+void analyse(ModelRun& mr, SetupKind setup) {
+    const auto& s = mr.run.samples;
+    if (!mr.run.ok() || s.size() < 64) return;
+    const double dt = s[1].t_s - s[0].t_s;
+    if (!(dt > 0.0)) return;
+    std::vector<double> x(s.size());
+    for (size_t i = 0; i < s.size(); ++i) x[i] = setup == SetupKind::Dynamics ? s[i].slider_m : s[i].ratio;
+    const PowerSpectrum ps = powerSpectrum(x, 1.0 / dt);
+    if (ps.ok) {
+        mr.spectrumFreq_Hz = ps.frequency_Hz;
+        mr.spectrumPsd = ps.psd;
+    }
+    const Correlation ac = autocorrelation(x, 1.0 / dt, s.size() / 2);
+    mr.acfLag_s = ac.lag_s;
+    mr.acf = ac.r;
+}
+
+double msSince(const QElapsedTimer& t) { return t.nsecsElapsed() / 1.0e6; }
+
+}  // namespace
+
+bool RunOutcome::ok() const {
+    return std::all_of(runs.begin(), runs.end(), [](const ModelRun& r) { return r.run.ok(); });
+}
+
+QString RunOutcome::failureText() const {
+    QStringList parts;
+    for (const auto& r : runs) {
+        if (r.run.ok()) continue;
+        parts << QStringLiteral("%1 run %2: %3")
+                     .arg(QString::fromLatin1(stickslip::toString(r.law)),
+                          QString::fromLatin1(stickslip::toString(r.run.status)),
+                          QString::fromStdString(r.run.message).replace('\n', "; "));
+    }
+    return parts.join(" | ");
+}
+
+bool SweepOutcome::cancelled() const {
+    return std::any_of(results.begin(), results.end(),
+                       [](const auto& r) { return r.second.status == RunStatus::Cancelled; });
+}
+
+SimulationController::SimulationController(QObject* parent) : QObject(parent) {
+    // Value types crossing threads through queued signals.
+    qRegisterMetaType<ModelSettings>();
+    qRegisterMetaType<RunOutcome>();
+    qRegisterMetaType<PoincareOutcome>();
+    qRegisterMetaType<SweepOutcome>();
+    qRegisterMetaType<MapOutcome>();
+    qRegisterMetaType<SweepOptions>();
+    qRegisterMetaType<MapOptions>();
+    timer_.setSingleShot(true);
+    timer_.setInterval(30);
+    connect(&timer_, &QTimer::timeout, this, &SimulationController::fire);
+    // One thread per kind of job, so a long sweep never queues a parameter change.
+    pool_.setMaxThreadCount(kJobKinds);
+}
+
+SimulationController::~SimulationController() {
+    timer_.stop();
+    cancelAll();
+    pool_.waitForDone();
+}
+
+bool SimulationController::isIdle() const {
+    return !timer_.isActive() && std::none_of(slots_.begin(), slots_.end(), [](const Slot& s) {
+               return s.busy || s.hasPending;
+           });
+}
+
+void SimulationController::requestRun(const ModelSettings& settings) {
+    pending_ = settings;
+    slots_[int(JobKind::Run)].hasPending = true;
+    slots_[int(JobKind::Poincare)].hasPending = poincareEnabled_;
+    // Leading edge: start now when no window is open; then hold later changes for one
+    // interval so a slider drag becomes at most one job per interval.
+    if (!timer_.isActive()) {
+        fire();
+        timer_.start();
+    }
+}
+
+void SimulationController::fire() {
+    for (JobKind kind : {JobKind::Run, JobKind::Poincare}) {
+        Slot& s = slots_[int(kind)];
+        if (!s.hasPending) continue;
+        if (s.busy) {
+            // Stale: ask it to stop; the newest settings start when it returns.
+            if (s.cancel && !s.cancel->exchange(true)) ++s.cancelledJobs;
+            continue;
+        }
+        s.hasPending = false;
+        if (kind == JobKind::Run) launchRun(pending_);
+        else launchPoincare(pending_);
+    }
+}
+
+std::shared_ptr<std::atomic<bool>> SimulationController::beginJob(JobKind kind, quint64& generation) {
+    Slot& s = slots_[int(kind)];
+    s.cancel = std::make_shared<std::atomic<bool>>(false);
+    s.busy = true;
+    ++s.launched;
+    generation = ++s.generation;
+    return s.cancel;
+}
+
+void SimulationController::jobReturned(JobKind kind, quint64 generation, bool wasCancelled) {
+    Slot& s = slots_[int(kind)];
+    if (generation == s.generation) s.busy = false;
+    Q_UNUSED(wasCancelled);
+    // Newer settings waited for this job: start them unless the throttle window is open
+    // (then the timer starts them).
+    if ((kind == JobKind::Run || kind == JobKind::Poincare) && s.hasPending && !timer_.isActive()) fire();
+}
+
+void SimulationController::launchRun(const ModelSettings& settings) {
+    quint64 gen = 0;
+    auto token = beginJob(JobKind::Run, gen);
+    emit runStarted(gen);
+    QtConcurrent::run(&pool_, [this, token, gen, settings]() {
+        QElapsedTimer clock;
+        clock.start();
+        RunControl ctl;
+        ctl.cancel = token.get();
+        RunOutcome out;
+        out.generation = gen;
+        out.settings = settings;
+        const auto laws = settings.laws();
+        out.runs.resize(laws.size());
+        auto one = [&](size_t i) {
+            out.runs[i].law = laws[i];
+            out.runs[i].run = simulate(settings.paramsFor(laws[i]), ctl);
+            analyse(out.runs[i], settings.params.setup);
+        };
+        if (laws.size() == 2) {
+            // The overlaid model runs beside the primary one (2 cores).
+            auto second = std::async(std::launch::async, [&] { one(1); });
+            one(0);
+            second.get();
+        } else {
+            one(0);
+        }
+        out.elapsed_ms = msSince(clock);
+        const bool cancelled = token->load();
+        QMetaObject::invokeMethod(
+            this,
+            [this, out = std::move(out), cancelled]() {
+                jobReturned(JobKind::Run, out.generation, cancelled);
+                if (!cancelled) emit runFinished(out);
+            },
+            Qt::QueuedConnection);
+    });
+}
+
+void SimulationController::launchPoincare(const ModelSettings& settings) {
+    quint64 gen = 0;
+    auto token = beginJob(JobKind::Poincare, gen);
+    QtConcurrent::run(&pool_, [this, token, gen, settings]() {
+        QElapsedTimer clock;
+        clock.start();
+        RunControl ctl;
+        ctl.cancel = token.get();
+        PoincareOutcome out;
+        out.generation = gen;
+        out.settings = settings;
+        if (settings.params.setup == SetupKind::Dynamics) {
+            // One point per forcing period over the same cycles the run records.
+            PoincareOptions opt;
+            opt.settleCycles = std::lround(settings.params.transientCycles);
+            opt.cycles = std::max(1L, std::lround(settings.params.cycles));
+            opt.phase_rad = 0.0;
+            for (LawKind law : settings.laws())
+                out.sections.emplace_back(law, poincareSection(settings.paramsFor(law), opt, ctl));
+        }
+        out.elapsed_ms = msSince(clock);
+        const bool cancelled = token->load();
+        QMetaObject::invokeMethod(
+            this,
+            [this, out = std::move(out), cancelled]() {
+                jobReturned(JobKind::Poincare, out.generation, cancelled);
+                if (!cancelled) emit poincareFinished(out);
+            },
+            Qt::QueuedConnection);
+    });
+}
+
+void SimulationController::startSweep(const ModelSettings& settings, const SweepOptions& options) {
+    cancel(JobKind::Sweep);
+    quint64 gen = 0;
+    auto token = beginJob(JobKind::Sweep, gen);
+    auto lastShown = std::make_shared<std::atomic<int>>(-1);
+    QtConcurrent::run(&pool_, [this, token, gen, settings, options, lastShown]() {
+        QElapsedTimer clock;
+        clock.start();
+        SweepOutcome out;
+        out.generation = gen;
+        out.settings = settings;
+        out.options = options;
+        const auto laws = settings.laws();
+        for (size_t i = 0; i < laws.size(); ++i) {
+            RunControl ctl;
+            ctl.cancel = token.get();
+            // Overall fraction over the laws; reported in whole per mille to keep the queue short.
+            ctl.progress = [this, i, n = laws.size(), lastShown](double f) {
+                const int pm = static_cast<int>((i + f) / n * 1000.0);
+                if (lastShown->exchange(pm) == pm) return;
+                QMetaObject::invokeMethod(this, [this, pm] { emit sweepProgress(pm / 1000.0); }, Qt::QueuedConnection);
+            };
+            out.results.emplace_back(laws[i], bifurcationSweep(settings.paramsFor(laws[i]), options, ctl));
+            if (token->load()) break;
+        }
+        out.elapsed_ms = msSince(clock);
+        const bool cancelled = token->load();
+        QMetaObject::invokeMethod(
+            this,
+            [this, out = std::move(out), cancelled]() {
+                const bool current = out.generation == slots_[int(JobKind::Sweep)].generation;
+                jobReturned(JobKind::Sweep, out.generation, cancelled);
+                // A cancelled sweep still reports what it finished (the dialog shows it);
+                // one replaced by a newer sweep does not.
+                if (current) emit sweepFinished(out);
+            },
+            Qt::QueuedConnection);
+    });
+}
+
+void SimulationController::startMap(const ModelSettings& settings, const MapOptions& options) {
+    cancel(JobKind::Map);
+    quint64 gen = 0;
+    auto token = beginJob(JobKind::Map, gen);
+    auto lastShown = std::make_shared<std::atomic<int>>(-1);
+    QtConcurrent::run(&pool_, [this, token, gen, settings, options, lastShown]() {
+        QElapsedTimer clock;
+        clock.start();
+        MapOutcome out;
+        out.generation = gen;
+        out.settings = settings;
+        out.options = options;
+        RunControl ctl;
+        ctl.cancel = token.get();
+        ctl.progress = [this, lastShown](double f) {
+            const int pm = static_cast<int>(f * 1000.0);
+            if (lastShown->exchange(pm) == pm) return;
+            QMetaObject::invokeMethod(this, [this, pm] { emit mapProgress(pm / 1000.0); }, Qt::QueuedConnection);
+        };
+        out.map = periodicityMap(settings.paramsFor(settings.laws().front()), options, ctl);
+        out.elapsed_ms = msSince(clock);
+        const bool cancelled = token->load();
+        QMetaObject::invokeMethod(
+            this,
+            [this, out = std::move(out), cancelled]() {
+                const bool current = out.generation == slots_[int(JobKind::Map)].generation;
+                jobReturned(JobKind::Map, out.generation, cancelled);
+                if (current) emit mapFinished(out);
+            },
+            Qt::QueuedConnection);
+    });
+}
+
+void SimulationController::cancel(JobKind kind) {
+    Slot& s = slots_[int(kind)];
+    s.hasPending = false;
+    if (s.busy && s.cancel && !s.cancel->exchange(true)) ++s.cancelledJobs;
+}
+
+void SimulationController::cancelAll() {
+    for (int k = 0; k < kJobKinds; ++k) cancel(static_cast<JobKind>(k));
+}
+
+}  // namespace stickslip::gui

@@ -1,0 +1,89 @@
+// Owns the computations behind the views; the GUI thread never computes.
+//
+// Kinds of job: Run (time series, loops, phase portrait, rig, spectrum, autocorrelation),
+// Poincaré section, bifurcation Sweep, periodicity Map. At most one job of each kind is in
+// flight. Parameter changes (Run and Poincaré) are throttled by a single-shot timer
+// (coalesceInterval, 30 ms): the first change starts at once when idle, later ones inside
+// the window are merged and the newest parameters win. A newer request cancels the job in
+// flight through its own std::atomic<bool> (the core's RunControl::cancel), and the newest
+// request starts as soon as the cancelled job returns. Every job works on its own copy of
+// the parameters; results come back as value types through queued signals.
+#pragma once
+
+#include <QElapsedTimer>
+#include <QFuture>
+#include <QObject>
+#include <QThreadPool>
+#include <QTimer>
+#include <array>
+#include <atomic>
+#include <memory>
+
+#include "job_results.hpp"
+
+namespace stickslip::gui {
+
+enum class JobKind { Run = 0, Poincare = 1, Sweep = 2, Map = 3 };
+constexpr int kJobKinds = 4;
+
+class SimulationController : public QObject {
+    Q_OBJECT
+public:
+    explicit SimulationController(QObject* parent = nullptr);
+    ~SimulationController() override;   // cancels every job and waits for it
+
+    void setCoalesceInterval(int ms) { timer_.setInterval(ms); }
+    int coalesceInterval() const { return timer_.interval(); }
+    // Whether parameter changes also compute the Poincaré section (costly for long runs).
+    void setPoincareEnabled(bool on) { poincareEnabled_ = on; }
+
+    bool isBusy(JobKind kind) const { return slots_[int(kind)].busy; }
+    bool isIdle() const;
+    // Jobs launched and jobs cancelled so far, per kind (tests, status).
+    int launchedCount(JobKind kind) const { return slots_[int(kind)].launched; }
+    int cancelledCount(JobKind kind) const { return slots_[int(kind)].cancelledJobs; }
+
+public slots:
+    // New parameters for the Run (and Poincaré) views.
+    void requestRun(const stickslip::gui::ModelSettings& settings);
+    // Start a sweep / map with these settings; one already running is cancelled first.
+    void startSweep(const stickslip::gui::ModelSettings& settings, const stickslip::SweepOptions& options);
+    void startMap(const stickslip::gui::ModelSettings& settings, const stickslip::MapOptions& options);
+    void cancel(stickslip::gui::JobKind kind);
+    void cancelAll();
+
+signals:
+    void runStarted(quint64 generation);
+    void runFinished(const stickslip::gui::RunOutcome& outcome);
+    void poincareFinished(const stickslip::gui::PoincareOutcome& outcome);
+    void sweepProgress(double fraction);
+    void sweepFinished(const stickslip::gui::SweepOutcome& outcome);
+    void mapProgress(double fraction);
+    void mapFinished(const stickslip::gui::MapOutcome& outcome);
+
+private:
+    struct Slot {
+        std::shared_ptr<std::atomic<bool>> cancel;  // token of the job in flight
+        bool busy = false;
+        quint64 generation = 0;
+        int launched = 0;
+        int cancelledJobs = 0;
+        bool hasPending = false;                    // Run/Poincaré: newer settings wait
+    };
+    void fire();                       // timer window opened/ended: start or cancel
+    void launchRun(const ModelSettings& s);
+    void launchPoincare(const ModelSettings& s);
+    void jobReturned(JobKind kind, quint64 generation, bool wasCancelled);
+    std::shared_ptr<std::atomic<bool>> beginJob(JobKind kind, quint64& generation);
+
+    std::array<Slot, kJobKinds> slots_;
+    ModelSettings pending_;
+    QTimer timer_;
+    QThreadPool pool_;
+    bool poincareEnabled_ = true;
+};
+
+}  // namespace stickslip::gui
+
+Q_DECLARE_METATYPE(stickslip::SweepOptions)
+Q_DECLARE_METATYPE(stickslip::MapOptions)

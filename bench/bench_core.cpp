@@ -1,0 +1,106 @@
+// Core speed at a stated accuracy (issue 2): for the Fig. 20 set at A = 1 mm with
+// ε_T = 1e6 N/m, find the number of steps per forcing cycle that keeps the slider-displacement
+// error over 20 cycles below a tolerance (relative to the displacement amplitude, against the
+// same run at dt/64), then time runs at that step with Google Benchmark on one core and report
+// ns per step, steps per cycle and forcing cycles simulated per second.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "core/integrate/dynamics.hpp"
+#include "core/presets.hpp"
+
+using namespace stickslip;
+
+namespace {
+
+SimParams baseParams() {
+    Preset p;
+    findPreset("default", p);
+    SimParams s = p.params;
+    s.drive.amplitude_m = 1.0e-3;
+    s.rateState.epsT_N_per_m = s.coulomb.epsT_N_per_m = 1.0e6;
+    s.cycles = 20;
+    return s;
+}
+
+// Slider displacement sampled 100 times per cycle over `cycles` cycles at n steps per cycle.
+std::vector<double> trajectory(SimParams p, long stepsPerCycle) {
+    const double T = p.drive.period();
+    p.integration.dt_s = T / static_cast<double>(stepsPerCycle);
+    DynamicsModel m = DynamicsModel::fromParams(p);
+    DynState s = m.initialState();
+    std::vector<double> x;
+    const long every = stepsPerCycle / 100;
+    long i = 0;
+    advance(m, s, static_cast<long>(p.cycles) * stepsPerCycle, [&](const DynState& st) {
+        if ((++i % every) == 0) x.push_back(st.x);
+    });
+    return x;
+}
+
+double relativeError(const SimParams& p, long n) {
+    const std::vector<double> a = trajectory(p, n), ref = trajectory(p, 64 * n);
+    double err = 0, amp = 0;
+    for (size_t i = 0; i < std::min(a.size(), ref.size()); ++i) {
+        err = std::max(err, std::abs(a[i] - ref[i]));
+        amp = std::max(amp, std::abs(ref[i]));
+    }
+    return err / amp;
+}
+
+// Smallest n of the form 100·round(1000·2^(j/4)/100) with error below tol.
+long stepsForTolerance(const SimParams& p, double tol, double& errOut) {
+    for (int j = 0; j < 40; ++j) {
+        const long n = 100 * std::lround(1000.0 * std::pow(2.0, j / 4.0) / 100.0);
+        const double e = relativeError(p, n);
+        std::printf("  tol %.0e: %7ld steps/cycle -> error %.3e\n", tol, n, e);
+        if (e < tol) { errOut = e; return n; }
+    }
+    errOut = NAN;
+    return -1;
+}
+
+void runAt(benchmark::State& state, SimParams p, long n, double err) {
+    const double T = p.drive.period();
+    p.integration.dt_s = T / static_cast<double>(n);
+    const DynamicsModel m = DynamicsModel::fromParams(p);
+    long steps = 0;
+    for (auto _ : state) {
+        DynState s = m.initialState();
+        StepReport r = advanceQuiet(m, s, static_cast<long>(p.cycles) * n);
+        benchmark::DoNotOptimize(s.x);
+        steps += r.stepsDone;
+    }
+    const double perStep = 1.0 / static_cast<double>(n);
+    state.counters["steps_per_cycle"] = static_cast<double>(n);
+    state.counters["rel_error"] = err;
+    state.counters["ns_per_step"] = benchmark::Counter(static_cast<double>(steps) * 1e-9,
+                                                       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.counters["cycles_per_s"] = benchmark::Counter(static_cast<double>(steps) * perStep, benchmark::Counter::kIsRate);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    const SimParams p = baseParams();
+    std::printf("Fig. 20 set, A = 1 mm, eps_T = 1e6 N/m, rate-state, 20 cycles; error = max|x - x_ref| / max|x_ref|, "
+                "x_ref at dt/64\n");
+    for (double tol : {1e-3, 1e-4}) {
+        double err = 0;
+        const long n = stepsForTolerance(p, tol, err);
+        if (n < 0) continue;
+        char name[64];
+        std::snprintf(name, sizeof name, "fig20_A1mm/tol_%.0e", tol);
+        benchmark::RegisterBenchmark(name, [p, n, err](benchmark::State& st) { runAt(st, p, n, err); })
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
+    }
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

@@ -1,0 +1,80 @@
+// Residual diagnostics: what a fitted model cannot explain, as values a report carries and
+// a GUI plots: the residual time series, its spectrum with the forcing harmonics marked, its
+// autocorrelation with a Ljung–Box whiteness test, and its correlation with candidate
+// signals that point to missing effects (effects/*.hpp list the signals that point to them).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace stickslip::identify {
+
+// One run's residual and the measured signals the candidate signals derive from.
+struct DiagnosticRun {
+    std::vector<double> t_s;
+    std::vector<double> residual;         // measured − predicted (any unit; usually N)
+    std::vector<double> slip_m;           // g (or the displacement the rig imposes)
+    std::vector<double> relVel_mps;       // V
+    std::vector<double> accel_mps2;       // sensed acceleration (optional: else dV/dt)
+    double normalForce_N = 0;             // t_N of the run
+    double forcingFrequency_Hz = 0;       // f (0: unknown, estimated from the reversals)
+    double accumulatedSlipStart_m = 0;    // slip accumulated before the run
+    int runIndex = 0;                     // position in recording order
+};
+
+// Names of the candidate signals, in report order:
+// signV V absV dVdt accel displacement time_since_reversal time_stuck_before_slip
+// accumulated_slip tN run_index cycle_index
+std::vector<std::string> candidateSignalNames();
+// Every candidate signal of a run, in candidateSignalNames() order, one value per sample.
+// "stuck" is |V| below stickVelocity_mps.
+std::vector<std::vector<double>> candidateSignals(const DiagnosticRun& run, double stickVelocity_mps);
+
+struct SignalCorrelation {
+    std::string signal;
+    double correlation = 0;  // Pearson r over all samples of all runs (NaN-free; 0 if constant)
+};
+
+struct Spectrum {
+    std::vector<double> frequency_Hz;
+    std::vector<double> power;          // one-sided periodogram (Hann window) [unit²/Hz]
+    std::vector<double> harmonics_Hz;   // forcing harmonics f, 2f, 3f … below Nyquist (marked)
+    double harmonicFraction = 0;        // share of the power within ±2 bins of the harmonics
+};
+
+struct Whiteness {
+    std::vector<double> acf;   // autocorrelation, lag 0 … maxLag (acf[0] = 1)
+    int lags = 0;              // lags in the Ljung–Box statistic
+    int decimation = 1;        // residual decimated by this before the test (see diagnose())
+    double ljungBoxQ = 0;      // Q = n(n+2) Σ ρ_k²/(n−k)
+    double pValue = 1;         // P(χ²_lags > Q)
+    bool white = true;         // p ≥ 0.01
+};
+
+struct Diagnostics {
+    double rms = 0;                             // RMS of the residual over all runs
+    std::vector<SignalCorrelation> correlations;
+    Spectrum spectrum;                          // of the longest run's residual
+    Whiteness whiteness;                        // of the runs' residuals (pooled statistic)
+    double integratedAcfTime = 1;               // τ_int = 1 + 2 Σ ρ_k (samples): n_eff = n/τ_int
+};
+
+// Autocorrelation of x (mean removed) at lags 0 … maxLag, by FFT (FFTW).
+std::vector<double> autocorrelation(const std::vector<double>& x, int maxLag);
+// Ljung–Box statistic over lags 1 … h for n samples, and its χ²_h upper-tail p-value.
+void ljungBox(const std::vector<double>& acf, size_t n, int h, double& Q, double& pValue);
+// Upper tail of the χ² distribution with k degrees of freedom.
+double chiSquareSurvival(double x, double k);
+// One-sided Hann-windowed periodogram at sample spacing dt (FFTW), harmonics of f marked.
+Spectrum powerSpectrum(const std::vector<double>& x, double dt_s, double forcing_Hz, int maxHarmonics = 20);
+// Pearson correlation (0 when either series is constant).
+double pearson(const std::vector<double>& a, const std::vector<double>& b);
+// Integrated autocorrelation time 1 + 2 Σ ρ_k, summed until ρ_k first drops below 0.05.
+double integratedAcfTime(const std::vector<double>& acf);
+
+// All diagnostics. The residual is decimated by `decimation` (≥ 1) before the whiteness test
+// so that the smoothing of the measurement chain (a 100 Hz low-pass at 1 kHz correlates
+// neighbouring samples) is not mistaken for model structure.
+Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation = 5, double stickVelocity_mps = 1e-3);
+
+}  // namespace stickslip::identify

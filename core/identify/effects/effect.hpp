@@ -1,0 +1,37 @@
+// What every missing-effect candidate declares: its name (as the report uses it), a
+// one-paragraph physical description, its residual signature, its parameters with units and
+// physical bounds, and the diagnostic signals that point to it. The physics of each effect
+// is a small value type in its own file; effects/registry.hpp registers them in one place.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace stickslip::identify {
+
+// One parameter of an effect, in physical units.
+struct EffectParam {
+    std::string name;      // e.g. "tau_s"
+    std::string unit;      // e.g. "s"
+    double initial = 0;    // starting value of a fit (the effect then changes little)
+    double lower = 0;      // physical lower bound
+    double upper = 1;      // physical upper bound
+    bool logScale = false; // positive scale parameter: fitted on a log scale
+};
+
+// Which set-ups an effect can act in.
+struct EffectSetups {
+    bool prescribed = true;  // friction force predicted from the measured slip history
+    bool dynamics = true;    // spring–mass rig (Eq. 8) driven by the stage
+};
+
+struct EffectInfo {
+    std::string name;                    // catalogue name, e.g. "frictional_lag"
+    std::string description;             // one paragraph of physics
+    std::string signature;               // what it leaves in the residual of a model without it
+    std::vector<EffectParam> params;
+    std::vector<std::string> pointers;   // diagnostic signals (names in diagnostics.hpp) that point to it
+    EffectSetups setups;
+};
+
+}  // namespace stickslip::identify

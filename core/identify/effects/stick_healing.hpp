@@ -1,0 +1,36 @@
+// stick_healing: static friction grows with the time spent stuck.
+#pragma once
+
+#include <cmath>
+
+#include "effect.hpp"
+
+namespace stickslip::identify {
+
+// An extra strength h (in units of μ) grows while the contact sticks,
+//   dh/dt = (Δμ_s − h)/τ_h     (stuck),
+// and is erased by slip over the law's critical distance D_c:  dh/dλ = −h/D_c.
+struct StickHealing {
+    double dmu_static = 0.0;   // Δμ_s, largest extra static coefficient [-]
+    double tau_heal_s = 0.05;  // τ_h, healing time constant [s]
+
+    double healWhileStuck(double h, double dt_s) const {
+        return dmu_static + (h - dmu_static) * std::exp(-dt_s / tau_heal_s);
+    }
+    static double eraseBySlip(double h, double slip_m, double Dc_m) { return h * std::exp(-slip_m / Dc_m); }
+
+    static EffectInfo info() {
+        return {"stick_healing",
+                "While the contact sticks, asperity junctions creep and bond, so the static friction "
+                "grows with the time spent stuck (Dieterich-Rabinowicz ageing) and breaks away at a "
+                "higher force after a long stick than after a short one. The paper's law has no "
+                "healing: its state variable does not evolve while stuck.",
+                "Residual peaks at the onset of slip whose size grows with the preceding time stuck: "
+                "correlation with 'time stuck before slip', near zero in steady sliding.",
+                {{"dmu_static", "-", 0.02, 0.0, 0.5, false}, {"tau_heal_s", "s", 0.05, 1e-3, 5.0, true}},
+                {"time_stuck_before_slip"},
+                {true, true}};
+    }
+};
+
+}  // namespace stickslip::identify

@@ -1,0 +1,303 @@
+#include "extended_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "../integrate/dynamics.hpp"
+
+namespace stickslip::identify {
+
+ExtendedLaw ExtendedLaw::make(const ExtendedModel& m) {
+    ExtendedLaw l;
+    l.base = m.law;
+    l.fx = m.effects;
+    l.tNref_N = m.tNref_N;
+    l.eps_N_per_m = m.effects.preslidingCompliance ? m.effects.preslidingCompliance->effectiveStiffness(m.law.epsT_N_per_m)
+                                                   : m.law.epsT_N_per_m;
+    return l;
+}
+
+double ExtendedLaw::K1(double alpha) const { return base.C1 * (std::exp(alpha / base.r) - 1.0); }
+
+double ExtendedLaw::muEffective(const LawState& s, double forceSign, double tN) const {
+    double mu = base.mu;
+    if (fx.normalLoadMu) mu += fx.normalLoadMu->muShift(tN, tNref_N);
+    if (fx.wearDrift) mu += fx.wearDrift->muShift(s.aux[0]);
+    if (fx.directionAsymmetry) mu += fx.directionAsymmetry->muShift(forceSign);
+    return mu;
+}
+
+LawState ExtendedLaw::initialState(const RunContext& ctx) const {
+    LawState s;
+    s.aux[0] = ctx.accumulatedSlipStart_m;
+    s.aux[2] = ctx.normalForce_N * muEffective(s, 1.0, ctx.normalForce_N);
+    return s;
+}
+
+// Return mapping with effects. As for the bare law (see friction/rate_state.cpp):
+//   trial  F_tr = F_n + ε Δg  (backlash: w_tr = w_n + Δg, F_tr = ε dz(w_tr)),  a = |F_tr|,
+//   strength Y(α) = t_N (μ_eff + h + K1(α)),  μ_eff = μ + load, wear and direction shifts
+//   (held at their start-of-step values), h the healed strength (stick_healing),
+//   Φ_tr = a − Y(α_n); stick if Φ_tr ≤ 0. Otherwise Δλ > 0 solves
+//   R(Δλ) = a − ε Δλ − Y(α_{n+1}(Δλ)) − η t_N Δλ/Δt = 0,
+//   α_{n+1} = (α_n − C2 Δλ²/(D_c Δt)) / (1 + Δλ/D_c)                        (2), BE
+// bracketed by [0, a/ε] and solved by Newton safeguarded with bisection.
+// frictional_lag: the strength in Φ is the lagged Y_act (explicit exact update over the
+// step), so R is linear: Δλ = Φ_tr/(ε + η t_N/Δt). The consistent tangent is
+// dF/dΔg = ε (1 + ε/R') with R' = dR/dΔλ < 0 (0 inside the backlash play).
+ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt, double tN) const {
+    ReturnMapResult res;
+    res.state = st;
+    const double eps = eps_N_per_m;
+    double trial = 0.0, wTrial = 0.0;
+    if (fx.backlash) {
+        wTrial = st.aux[3] + dg;
+        trial = eps * fx.backlash->deadZone(wTrial);
+    } else {
+        trial = st.force_N + eps * dg;
+    }
+    const double a = std::abs(trial);
+    const double s = trial >= 0.0 ? 1.0 : -1.0;
+    const double mu = muEffective(st, s, tN);
+    const double h = fx.stickHealing ? st.aux[1] : 0.0;
+    const double yLaw = tN * (mu + h + K1(st.alpha));
+    const double yAct = fx.frictionalLag ? fx.frictionalLag->lagged(st.aux[2], yLaw, dt) : yLaw;
+    const double phiTrial = a - yAct;
+
+    if (phiTrial <= 0.0) {  // stick: elastic step
+        res.state.force_N = trial;
+        if (fx.backlash) res.state.aux[3] = wTrial;
+        if (fx.stickHealing) res.state.aux[1] = fx.stickHealing->healWhileStuck(h, dt);
+        if (fx.frictionalLag) res.state.aux[2] = yAct;
+        res.tangent_N_per_m = (fx.backlash && fx.backlash->inPlay(wTrial)) ? 0.0 : eps;
+        // Inside or at the edge of the play F is not F_n + ε Δg: report "not stuck" so that
+        // the Newmark step iterates with this force and tangent instead of its elastic predictor.
+        res.stuck = !(fx.backlash && (fx.backlash->inPlay(wTrial) || fx.backlash->inPlay(st.aux[3])));
+        return res;
+    }
+    res.stuck = false;
+    const double visc = base.eta_s_per_m * tN / dt;  // η t_N/Δt [N/m]
+    const double invDc = 1.0 / base.Dc_m;
+    const double c2q = base.C2() * invDc / dt;
+    const double invR = 1.0 / base.r;
+    auto alphaAt = [&](double x, double& dalpha) {
+        const double den = 1.0 + x * invDc;
+        const double al = (st.alpha - c2q * x * x) / den;
+        dalpha = (-2.0 * c2q * x - al * invDc) / den;
+        return al;
+    };
+    double x = 0.0, alpha = st.alpha, dR = -(eps + visc);
+    const double hi0 = a / eps;  // the force cannot change sign in a step
+    if (fx.frictionalLag) {
+        x = std::min(phiTrial / (eps + visc), hi0);
+        double da = 0;
+        alpha = alphaAt(x, da);
+    } else {
+        const double y0 = tN * (mu + h);
+        auto eval = [&](double xx, double& R, double& dRx, double& al) {
+            double da = 0;
+            al = alphaAt(xx, da);
+            const double e = std::exp(al * invR);
+            R = a - eps * xx - y0 - tN * base.C1 * (e - 1.0) - visc * xx;
+            dRx = -eps - visc - tN * base.C1 * invR * e * da;
+        };
+        double lo = 0.0, hi = hi0, R = 0.0;
+        eval(hi, R, dR, alpha);
+        if (R > 0.0) {  // slides to zero force within the step
+            x = hi;
+        } else {
+            x = std::min(phiTrial / (eps + visc), hi);
+            const double ftol = 1e-12 * (a + tN);
+            bool ok = false;
+            int it = 0;
+            for (; it < 200; ++it) {
+                eval(x, R, dR, alpha);
+                if (std::abs(R) <= ftol) { ok = true; break; }
+                if (R > 0.0) lo = x; else hi = x;
+                double xn = (dR < 0.0) ? x - R / dR : 0.5 * (lo + hi);
+                if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);
+                if (hi - lo <= 1e-15 * hi0 + 1e-300) { x = xn; eval(x, R, dR, alpha); ok = true; break; }
+                x = xn;
+            }
+            res.iterations = it + 1;
+            res.converged = ok;
+        }
+    }
+    res.slipIncrement_m = x;
+    res.state.force_N = s * (a - eps * x);
+    res.state.alpha = alpha;
+    res.state.aux[0] = st.aux[0] + x;
+    if (fx.stickHealing) res.state.aux[1] = StickHealing::eraseBySlip(h, x, base.Dc_m);
+    if (fx.frictionalLag) res.state.aux[2] = yAct;
+    if (fx.backlash) res.state.aux[3] = wTrial - s * x;
+    res.tangent_N_per_m = (dR < 0.0) ? eps * (1.0 + eps / dR) : 0.0;
+    return res;
+}
+
+namespace {
+
+// Central difference of y over t (one-sided at the ends).
+std::vector<double> derivative(const std::vector<double>& t, const std::vector<double>& y) {
+    const size_t n = y.size();
+    std::vector<double> d(n, 0.0);
+    if (n < 2) return d;
+    d[0] = (y[1] - y[0]) / (t[1] - t[0]);
+    d[n - 1] = (y[n - 1] - y[n - 2]) / (t[n - 1] - t[n - 2]);
+    for (size_t i = 1; i + 1 < n; ++i) d[i] = (y[i + 1] - y[i - 1]) / (t[i + 1] - t[i - 1]);
+    return d;
+}
+
+}  // namespace
+
+ExtendedTrace simulateExtendedPrescribed(const ExtendedModel& m, const RunContext& ctx, const std::vector<double>& t,
+                                         const std::vector<double>& g, const std::vector<double>* accel, int substeps,
+                                         const RunControl& ctl) {
+    ExtendedTrace tr;
+    const size_t n = t.size();
+    if (n < 2 || g.size() != n || (accel && accel->size() != n) || substeps < 1) {
+        tr.status = RunStatus::Failed;
+        tr.message = "prescribed history: need >= 2 samples, equal lengths and substeps >= 1";
+        return tr;
+    }
+    const ExtendedLaw law = ExtendedLaw::make(m);
+    const double tN = ctx.normalForce_N;
+    LawState s = law.initialState(ctx);
+    tr.t_s = t;
+    tr.slip_m = g;
+    tr.relVel_mps = derivative(t, g);
+    const std::vector<double> a = accel ? *accel : derivative(t, tr.relVel_mps);
+    tr.sliderAccel_mps2 = a;
+    tr.contactForce_N.assign(n, 0.0);
+    tr.measuredForce_N.assign(n, 0.0);
+    tr.stuck.assign(n, 1);
+    const double cp = m.effects.viscousDamping ? m.effects.viscousDamping->parallelDamping(tN) : 0.0;
+    const double ms = m.effects.sensorInertia ? m.effects.sensorInertia->mass_kg : 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        if (i > 0) {
+            const double dt = (t[i] - t[i - 1]) / substeps;
+            const double dg = (g[i] - g[i - 1]) / substeps;
+            if (!(dt > 0.0)) {
+                tr.status = RunStatus::Failed;
+                tr.message = "prescribed history: time not increasing at sample " + std::to_string(i);
+                return tr;
+            }
+            bool stuck = true;
+            for (int k = 0; k < substeps; ++k) {
+                const ReturnMapResult r = law.returnMap(s, dg, dt, tN);
+                if (!r.converged || !std::isfinite(r.state.force_N)) {
+                    tr.status = RunStatus::Failed;
+                    tr.message = "return mapping failed at t = " + std::to_string(t[i]) + " s";
+                    return tr;
+                }
+                s = r.state;
+                stuck = stuck && r.slipIncrement_m == 0.0;
+            }
+            tr.stuck[i] = stuck ? 1 : 0;
+            if ((i & 4095) == 0 && ctl.cancelled()) {
+                tr.status = RunStatus::Cancelled;
+                tr.message = "cancelled";
+                return tr;
+            }
+        }
+        tr.contactForce_N[i] = s.force_N;
+        tr.measuredForce_N[i] = s.force_N + cp * tr.relVel_mps[i] + ms * a[i];
+    }
+    tr.accumulatedSlipEnd_m = s.aux[0];
+    return tr;
+}
+
+ExtendedTrace simulateExtendedDynamics(const ExtendedModel& m, const RunContext& ctx, const StageMotion& stage,
+                                       double t0, double dt, long steps, long outputEvery, const RunControl& ctl) {
+    ExtendedTrace tr;
+    if (!(dt > 0.0) || steps < 1 || outputEvery < 1) {
+        tr.status = RunStatus::Failed;
+        tr.message = "dynamics: need dt > 0, steps >= 1, outputEvery >= 1";
+        return tr;
+    }
+    const ExtendedLaw law = ExtendedLaw::make(m);
+    RigParams rig = m.rig;
+    rig.normalForce_N = ctx.normalForce_N;
+    if (m.effects.viscousDamping) rig.damping_Ns_per_m = m.effects.viscousDamping->rigDamping(rig.stiffness_N_per_m, rig.mass_kg);
+    const double ms = m.effects.sensorInertia ? m.effects.sensorInertia->mass_kg : 0.0;
+    DynState s;
+    s.t = t0;
+    s.u = stage.displacement(t0);
+    s.law = law.initialState(ctx);
+    if (m.effects.backlash) s.law.aux[3] = 0.0;
+    auto record = [&](const DynState& d) {
+        tr.t_s.push_back(d.t);
+        tr.stage_m.push_back(d.u);
+        tr.slider_m.push_back(d.x);
+        tr.sliderVel_mps.push_back(d.v);
+        tr.sliderAccel_mps2.push_back(d.a);
+        tr.slip_m.push_back(d.u - d.x);
+        tr.relVel_mps.push_back(stage.velocity(d.t) - d.v);
+        tr.contactForce_N.push_back(d.law.force_N);
+        tr.measuredForce_N.push_back(d.law.force_N + ms * d.a);
+        tr.stuck.push_back(d.stuck ? 1 : 0);
+    };
+    record(s);
+    for (long i = 1; i <= steps; ++i) {
+        int nIts = 0, lIts = 0;
+        const char* why = nullptr;
+        double bad = 0.0;
+        if (!stickslip::detail::newmarkStep(rig, law, stage, dt, s, nIts, lIts, why, bad)) {
+            tr.status = RunStatus::Failed;
+            tr.message = stickslip::detail::stepFailure(i, s.t + dt, why, bad);
+            return tr;
+        }
+        if (i % outputEvery == 0) record(s);
+        if ((i & 4095) == 0 && ctl.cancelled()) {
+            tr.status = RunStatus::Cancelled;
+            tr.message = "cancelled";
+            return tr;
+        }
+    }
+    tr.accumulatedSlipEnd_m = s.law.aux[0];
+    return tr;
+}
+
+SlipPhasePrediction simulateSlipPhaseForce(const ExtendedModel& m, const RunContext& ctx, const std::vector<double>& t,
+                                           const std::vector<double>& V, const std::vector<double>* accel, double vStick) {
+    SlipPhasePrediction out;
+    const size_t n = std::min(t.size(), V.size());
+    out.force_N.assign(n, 0.0);
+    out.sliding.assign(n, 0);
+    const ExtendedLaw law = ExtendedLaw::make(m);
+    const EffectSet& fx = m.effects;
+    const double tN = ctx.normalForce_N;
+    const double ms = fx.sensorInertia ? fx.sensorInertia->mass_kg : 0.0;
+    const bool haveAcc = accel && accel->size() >= n;
+    const double C2 = m.law.C2(), Dc = m.law.Dc_m;
+    LawState s = law.initialState(ctx);
+    for (size_t i = 0; i < n; ++i) {
+        const double dt = i > 0 ? t[i] - t[i - 1] : 0.0;
+        const double v = std::abs(V[i]);
+        const double sg = V[i] >= 0 ? 1.0 : -1.0;
+        const bool slide = v >= vStick;
+        const double mu = law.muEffective(s, sg, tN);
+        double h = fx.stickHealing ? s.aux[1] : 0.0;
+        if (dt > 0) {
+            if (slide) {
+                const double decay = std::exp(-v * dt / Dc);
+                s.alpha = -C2 * v + (s.alpha + C2 * v) * decay;
+                h *= decay;
+                s.aux[0] += v * dt;
+            } else if (fx.stickHealing) {
+                h = fx.stickHealing->healWhileStuck(h, dt);
+            }
+            s.aux[1] = h;
+        }
+        const double yLaw = tN * (mu + h + law.K1(s.alpha));
+        if (fx.frictionalLag) s.aux[2] = dt > 0 ? fx.frictionalLag->lagged(s.aux[2], yLaw, dt) : s.aux[2];
+        const double y = fx.frictionalLag ? s.aux[2] : yLaw;
+        if (slide) {
+            out.sliding[i] = 1;
+            out.force_N[i] = sg * (y + m.law.eta_s_per_m * tN * v) + (haveAcc ? ms * (*accel)[i] : 0.0);
+        }
+    }
+    out.accumulatedSlipEnd_m = s.aux[0];
+    return out;
+}
+
+}  // namespace stickslip::identify

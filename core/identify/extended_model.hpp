@@ -1,0 +1,99 @@
+// The baseline rate-state law (paper Eqs. 1–4) plus any composition of missing effects
+// (effects/registry.hpp), simulated in both set-ups: prescribed slip (Fig. 15a) and the
+// spring–mass rig (Fig. 15b, Eq. 8, reusing the Newmark stepper of integrate/dynamics.hpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "../friction/law_state.hpp"
+#include "../integrate/run_result.hpp"
+#include "../integrate/stage_motion.hpp"
+#include "../params.hpp"
+#include "effects/registry.hpp"
+
+namespace stickslip::identify {
+
+// Constant model: baseline law and rig, the effects switched on, and the reference load of
+// normal_load_mu.
+struct ExtendedModel {
+    RateStateParams law;      // μ, η, D_c, C1, r, v_c, ε_T
+    RigParams rig;            // dynamics set-up: t_N, k, m*, c (c replaced when viscous_damping is on)
+    EffectSet effects;
+    double tNref_N = 6.2;     // t_N,ref of normal_load_mu [N]
+};
+
+// What differs from run to run of one dataset.
+struct RunContext {
+    double normalForce_N = 6.2;          // t_N of the run [N]
+    double accumulatedSlipStart_m = 0;   // slip already accumulated on the specimen (wear_drift) [m]
+};
+
+// An effect-aware friction law with the same concept as RateStateLaw (returnMap, epsT), so it
+// runs in detail::newmarkStep. LawState::aux holds:
+//   aux[0] accumulated slip s [m] (wear_drift), aux[1] healed extra strength h [-]
+//   (stick_healing), aux[2] lagged strength Y_act [N] (frictional_lag), aux[3] elastic+play
+//   coordinate w = g − λ [m] (backlash).
+struct ExtendedLaw {
+    RateStateParams base;
+    EffectSet fx;
+    double tNref_N = 6.2;
+    double eps_N_per_m = 1e6;  // ε_T, or ε_T in series with presliding_compliance
+
+    static ExtendedLaw make(const ExtendedModel& m);
+
+    // Backward-Euler return mapping over one step (derivation in extended_model.cpp).
+    ReturnMapResult returnMap(const LawState& s, double dg_m, double dt_s, double normalForce_N) const;
+    double epsT() const { return eps_N_per_m; }
+    double K1(double alpha) const;  // Eq. 1
+    // μ with the load-, wear- and direction-dependent shifts for a force of sign `forceSign`.
+    double muEffective(const LawState& s, double forceSign, double normalForce_N) const;
+    // Contact at rest at the start of a run: F = 0, α = 0, strength at its law value.
+    LawState initialState(const RunContext& ctx) const;
+};
+
+// Time series of a simulated run: the contact force and the force a sensor would measure
+// (contact force + parallel dashpot + sensor inertia).
+struct ExtendedTrace {
+    RunStatus status = RunStatus::Ok;
+    std::string message;
+    std::vector<double> t_s, stage_m, slider_m, sliderVel_mps, sliderAccel_mps2;
+    std::vector<double> slip_m, relVel_mps;
+    std::vector<double> contactForce_N, measuredForce_N;
+    std::vector<char> stuck;
+    double accumulatedSlipEnd_m = 0;
+    bool ok() const { return status == RunStatus::Ok; }
+};
+
+// Prescribed slip g(t) at the samples t (strictly increasing), `substeps` law steps per
+// interval (g linear in between). V for the dashpot is the central difference of g; the
+// sensed acceleration is `accel` when given (same length), else the second difference of g.
+ExtendedTrace simulateExtendedPrescribed(const ExtendedModel& m, const RunContext& ctx, const std::vector<double>& t_s,
+                                         const std::vector<double>& slip_m, const std::vector<double>* accel_mps2,
+                                         int substeps, const RunControl& ctl = {});
+
+// Spring–mass rig driven by `stage` from rest at t0 with step dt_s; records every
+// `outputEvery` steps (the start state included). The contact's t_N is ctx.normalForce_N.
+ExtendedTrace simulateExtendedDynamics(const ExtendedModel& m, const RunContext& ctx, const StageMotion& stage,
+                                       double t0_s, double dt_s, long steps, long outputEvery,
+                                       const RunControl& ctl = {});
+
+// Rigid-contact limit (ε_T → ∞) of the extended law along a measured slip velocity V(t):
+// while |V| ≥ vStick the contact slides and
+//   F = sign V [Y_act + η t_N |V|] + m_s a,   Y = t_N (μ_eff + h + K1(α)),
+// with α updated exactly at constant |V| over each interval (Eq. 2 at λ̇ = |V|):
+//   α_{n+1} = −C2|V| + (α_n + C2|V|) exp(−|V| Δt/D_c),
+// healing h erased as exp(−|V|Δt/D_c), accumulated slip s += |V|Δt, Y_act lagged; while
+// |V| < vStick the contact sticks (α frozen, h heals, Y_act follows), the force is set by the
+// rig and not predicted (`sliding` = 0). backlash and presliding_compliance act inside stick
+// and have no effect here. viscous_damping is a rig effect (not in this force).
+struct SlipPhasePrediction {
+    std::vector<double> force_N;   // predicted measured force (0 where stuck)
+    std::vector<char> sliding;     // 1 where the prediction applies
+    double accumulatedSlipEnd_m = 0;
+};
+SlipPhasePrediction simulateSlipPhaseForce(const ExtendedModel& m, const RunContext& ctx, const std::vector<double>& t_s,
+                                           const std::vector<double>& relVel_mps, const std::vector<double>* accel_mps2,
+                                           double vStick_mps);
+
+}  // namespace stickslip::identify

@@ -1,0 +1,176 @@
+// Nonlinear least squares with bounds, several starts and honest uncertainties (issue 5).
+//
+// Two layers:
+//  1. A GENERIC engine, fitLeastSquares(FitProblem): any residual callback over named,
+//     bounded parameters (free or fixed), solved with Ceres (numeric central differences
+//     through the callback), parameters internally scaled (log for positive scale
+//     parameters) so the problem is well conditioned, several deterministic starting points,
+//     optional robust loss. Standard errors and correlations come from (JᵀJ)⁻¹ σ̂² at the
+//     optimum, with σ̂² = 2·cost/(m − p); a near-singular JᵀJ is reported as "not
+//     identifiable" (no standard errors) rather than printed as meaningless numbers.
+//     The identify loop (missing effects) reuses this engine with its own residuals.
+//  2. Dataset-level helpers: fit a friction law to a Dataset in either set-up (prescribed
+//     slip or dynamics with multiple shooting), per-run RMS / NRMSE, held-out validation.
+// All Ceres code lives in fit.cpp (one translation unit: it compiles slowly).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "../params.hpp"
+#include "predict.hpp"
+
+namespace stickslip::identify {
+
+// How the solver sees a parameter internally (the user always sees physical values).
+enum class ParamScale {
+    Linear,  // z = (value − lower)/(upper − lower) style affine scaling by the range
+    Log,     // z = log(value): for positive scale parameters (η, D_c, v_c, ε_T, …); needs lower > 0
+};
+
+// One named parameter with physical bounds. Fixed parameters are passed to the residual
+// callback unchanged.
+struct FitParameter {
+    std::string name;          // e.g. "mu", "eta", "Dc", "vc", "epsT", "k", "m", "c"
+    double value = 0.0;        // starting value (and the value used when fixed), physical units
+    double lower = 0.0;        // lower bound, physical units
+    double upper = 1.0;        // upper bound, physical units (> lower)
+    bool free = true;          // fitted (true) or held at `value` (false)
+    ParamScale scale = ParamScale::Linear;
+};
+
+enum class LossKind { None, Huber, Cauchy };
+
+// The residual callback receives ALL parameter values (free and fixed) in the order of
+// FitProblem::parameters, in physical units, and fills `residuals` (size residualCount).
+// Return false when the model cannot be evaluated there (simulation failure): the solver
+// then treats the point as infeasible and steps back.
+using ResidualFunction = std::function<bool(const std::vector<double>& params, std::vector<double>& residuals)>;
+
+struct FitProblem {
+    std::vector<FitParameter> parameters;
+    ResidualFunction residuals;
+    size_t residualCount = 0;
+
+    int multistarts = 3;               // starting points: the given values + (multistarts−1) random in the box
+    LossKind loss = LossKind::None;    // robust loss on each residual
+    double lossScale = 1.0;            // residual size at which the robust loss bends
+    uint64_t seed = 20260101;          // deterministic random starts
+    int maxIterations = 60;            // per start
+    double functionTolerance = 1e-9;   // relative cost change to stop
+    double parameterTolerance = 1e-9;  // relative step (internal scale) to stop
+    double relativeStep = 1e-4;        // central-difference step, relative to the internal parameter
+    double conditionLimit = 1e10;      // cond(JᵀJ, scaled to unit diagonal) above this: not identifiable
+    const std::atomic<bool>* cancel = nullptr;        // polled between solver iterations
+    std::function<void(double fraction)> progress;    // 0..1 over all starts
+
+    // Every problem with the set-up (bounds, sizes, missing callback), empty if usable.
+    std::vector<std::string> validate() const;
+};
+
+enum class FitStatus { Ok, Failed, Cancelled };
+
+struct FitResult {
+    FitStatus status = FitStatus::Failed;
+    std::string message;                    // why it failed; empty when Ok
+
+    std::vector<std::string> names;         // all parameters, in problem order
+    std::vector<double> values;             // best values (physical units), all parameters
+    std::vector<bool> free;                 // which ones were fitted
+    std::vector<double> stderrs;            // 1-σ standard errors; 0 for fixed, NaN when not identifiable
+    // Correlation among the FREE parameters (freeNames order), row-major, size nFree².
+    std::vector<std::string> freeNames;
+    std::vector<double> correlation;
+    bool identifiable = false;              // JᵀJ well conditioned at the optimum
+    std::string identifiabilityMessage;     // e.g. "not identifiable: cond(JᵀJ) = 3e14; nearly dependent: eta, vc"
+    double conditionNumber = 0.0;           // of the unit-diagonal-scaled JᵀJ
+
+    double cost = 0.0;                      // ½ Σ ρ(r²) at the optimum (Ceres convention)
+    double rms = 0.0;                       // sqrt(Σ r² / m), plain residuals
+    size_t residualCount = 0;
+    bool converged = false;                 // best start ended with Ceres CONVERGENCE
+    int startsTried = 0;
+    int bestStart = -1;                     // index of the start that gave the optimum (0 = given values)
+    std::vector<double> startCosts;         // final cost of every start
+    std::string solverSummary;              // Ceres BriefReport of the best start (+ one line per start)
+    double wallTime_s = 0.0;
+    long residualEvaluations = 0;
+
+    bool ok() const { return status == FitStatus::Ok; }
+    double value(const std::string& name) const;   // NaN if no such parameter
+    double stderrOf(const std::string& name) const;
+};
+
+// Solve the problem. Never throws; failure and cancellation come back as a status.
+FitResult fitLeastSquares(const FitProblem& problem);
+
+// Standard physical bounds and scale for a named model parameter (keys as in params.hpp
+// setParam: mu C1 eta Dc vc epsT k m c tN). `setup` widens μ/η/C1 for the prescribed
+// set-up where t_N is only a reference load. Unknown name: returns false.
+bool defaultParameter(const std::string& name, SetupKind setup, FitParameter& out);
+
+// ---------------------------------------------------------------------------------------
+// Dataset level: a friction law fitted jointly to cleaned runs (shared law parameters, each
+// run with its own known settings), scored per run on fit and held-out validation data.
+
+struct DatasetFitSettings {
+    SetupKind setup = SetupKind::Prescribed;
+    LawKind law = LawKind::RateState;
+    // Free parameters (names as in defaultParameter, plus "zeta" = rig damping ratio).
+    // Names that the chosen law does not have (eta, Dc, vc, C1, r for Coulomb) are dropped.
+    std::vector<std::string> free = {"mu", "eta", "Dc", "vc", "epsT"};
+    std::map<std::string, double> start;  // starting (or fixed) values overriding the defaults
+    bool tieC1ToMu = true;                // C1 = μ unless C1 is free or given in `start`
+    bool estimateStart = true;            // μ start from the data (median |F|/t_N while sliding)
+    PredictSettings predict;
+    int multistarts = 3;
+    LossKind loss = LossKind::None;
+    double lossScale = 1.0;
+    uint64_t seed = 20260101;
+    int maxIterations = 40;
+    const std::atomic<bool>* cancel = nullptr;
+    std::function<void(double)> progress;
+};
+
+// Errors of one run. NRMSE = RMS error / RMS of the measured signal over the scored samples.
+// In the dynamics set-up `nrmse` combines both channels: sqrt((nrmse_F² + nrmse_x²)/2).
+struct RunScore {
+    std::string file;
+    std::string role;           // "fit" or "validation"
+    size_t samples = 0;
+    double rms_N = 0.0;         // force RMS error
+    double nrmseForce = 0.0;
+    double rms_m = 0.0;         // slider displacement RMS error (dynamics; else 0)
+    double nrmseDisp = 0.0;
+    double nrmse = 0.0;
+    double sse = 0.0, ssMeasured = 0.0;  // Σ (normalised) errors² and Σ measured², for pooling
+    bool ok = false;
+    std::string message;
+};
+
+struct DatasetFit {
+    bool ok = false;
+    std::string message;
+    SetupKind setup = SetupKind::Prescribed;
+    ModelSpec model;                 // the fitted values (free and fixed)
+    FitResult fit;
+    std::vector<RunScore> runs;      // fit runs first, then validation runs
+    double fitNrmse = 0.0;           // pooled over the fit runs
+    double validationNrmse = 0.0;    // pooled over the validation runs (NaN when none)
+};
+
+DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& validationRuns,
+                      const DatasetFitSettings& settings);
+
+RunScore scoreRun(const CleanRun& run, SetupKind setup, const ModelSpec& model, const PredictSettings& predict,
+                  const std::string& role, Prediction* prediction = nullptr);
+
+// Held-out validation by time: the first `fraction` of the fit window is kept for fitting, the
+// rest becomes a validation run (same data, later window).
+std::pair<CleanRun, CleanRun> splitByTime(const CleanRun& run, double fraction);
+
+}  // namespace stickslip::identify

@@ -1,0 +1,232 @@
+// Dataset-level fitting on top of the generic engine (fit.hpp). No Ceres here.
+//
+// Residuals: for each fit run and each scored sample i,
+//   prescribed:  r = (F_pred − F_meas) / RMS(F_meas of the run)
+//   dynamics:    r = (x_pred − x_meas) / RMS(x_meas),  r' = (F_pred − F_meas) / RMS(F_meas)
+// so runs and channels of different size weigh alike and the standard errors (which use the
+// residual variance at the optimum) do not depend on units.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "fit.hpp"
+
+namespace stickslip::identify {
+
+using io::Signal;
+
+namespace {
+
+bool lawHas(LawKind law, const std::string& name) {
+    if (law == LawKind::RateState) return true;
+    return name != "eta" && name != "Dc" && name != "vc" && name != "C1" && name != "r";
+}
+
+double rmsOf(const std::vector<double>& v, const std::vector<size_t>& idx) {
+    double s = 0;
+    for (size_t i : idx) s += v[i] * v[i];
+    return idx.empty() ? 0.0 : std::sqrt(s / static_cast<double>(idx.size()));
+}
+
+// μ start from the data: median |F|/t_N over samples sliding faster than half the peak speed.
+double estimateMu(const CleanRun& c) {
+    const io::Run& r = c.run;
+    double tN = 0;
+    if (!r.has(Signal::Friction) || !r.has(Signal::RelVel) || !r.setting("tN", tN) || !(tN > 0)) return -1;
+    double vmax = 0;
+    for (size_t i = c.begin; i < c.end; ++i) vmax = std::max(vmax, std::abs(r[Signal::RelVel][i]));
+    std::vector<double> ratio;
+    for (size_t i = c.begin; i < c.end; ++i)
+        if (std::abs(r[Signal::RelVel][i]) > 0.5 * vmax) ratio.push_back(std::abs(r[Signal::Friction][i]) / tN);
+    if (ratio.empty()) return -1;
+    std::nth_element(ratio.begin(), ratio.begin() + static_cast<long>(ratio.size() / 2), ratio.end());
+    return ratio[ratio.size() / 2];
+}
+
+}  // namespace
+
+RunScore scoreRun(const CleanRun& run, SetupKind setup, const ModelSpec& model, const PredictSettings& ps,
+                  const std::string& role, Prediction* out) {
+    RunScore sc;
+    sc.file = run.run.file;
+    sc.role = role;
+    Prediction p = predictRun(run, setup, model, ps);
+    if (!p.ok) {
+        sc.message = p.message;
+        sc.nrmse = sc.nrmseForce = std::numeric_limits<double>::quiet_NaN();
+        if (out) *out = p;
+        return sc;
+    }
+    const std::vector<double>& F = run.run[Signal::Friction];
+    double eF = 0, mF = 0, eX = 0, mX = 0;
+    for (size_t k = 0; k < p.index.size(); ++k) {
+        const size_t i = p.index[k];
+        eF += (p.force_N[k] - F[i]) * (p.force_N[k] - F[i]);
+        mF += F[i] * F[i];
+        if (setup == SetupKind::Dynamics) {
+            const double x = run.run[Signal::SliderDisp][i];
+            eX += (p.slider_m[k] - x) * (p.slider_m[k] - x);
+            mX += x * x;
+        }
+    }
+    const double n = static_cast<double>(p.index.size());
+    sc.samples = p.index.size();
+    sc.rms_N = std::sqrt(eF / n);
+    sc.nrmseForce = mF > 0 ? std::sqrt(eF / mF) : std::numeric_limits<double>::quiet_NaN();
+    if (setup == SetupKind::Dynamics) {
+        sc.rms_m = std::sqrt(eX / n);
+        sc.nrmseDisp = mX > 0 ? std::sqrt(eX / mX) : std::numeric_limits<double>::quiet_NaN();
+        sc.nrmse = std::sqrt(0.5 * (sc.nrmseForce * sc.nrmseForce + sc.nrmseDisp * sc.nrmseDisp));
+        sc.sse = sc.nrmse * sc.nrmse * n;  // pooled as normalised squared error per sample
+        sc.ssMeasured = n;
+    } else {
+        sc.nrmse = sc.nrmseForce;
+        sc.sse = eF;
+        sc.ssMeasured = mF;
+    }
+    sc.ok = true;
+    if (out) *out = std::move(p);
+    return sc;
+}
+
+std::pair<CleanRun, CleanRun> splitByTime(const CleanRun& run, double fraction) {
+    CleanRun a = run, b = run;
+    const size_t mid = run.begin + static_cast<size_t>(std::floor(fraction * static_cast<double>(run.end - run.begin)));
+    a.end = mid;
+    b.begin = mid;
+    a.notes.push_back("time split: fit part");
+    b.notes.push_back("time split: validation part");
+    return {a, b};
+}
+
+DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& valRuns, const DatasetFitSettings& st) {
+    DatasetFit out;
+    out.setup = st.setup;
+    out.model.law = st.law;
+    out.model.tieC1ToMu = st.tieC1ToMu;
+    if (fitRuns.empty()) {
+        out.message = "no runs to fit";
+        return out;
+    }
+    const std::vector<std::string> pbad = st.predict.validate();
+    if (!pbad.empty()) {
+        out.message = pbad.front();
+        return out;
+    }
+    // Parameters: the free ones (that the law has) with default bounds, starts from the data
+    // and from `start`; everything in `start` that is not free is passed as fixed.
+    FitProblem prob;
+    std::vector<std::string> dropped;
+    for (const std::string& name : st.free) {
+        if (!lawHas(st.law, name)) { dropped.push_back(name); continue; }
+        FitParameter fp;
+        if (name == "zeta") fp = FitParameter{"zeta", 0.005, 1e-5, 1.0, true, ParamScale::Log};
+        else if (!defaultParameter(name, st.setup, fp)) {
+            out.message = "unknown free parameter '" + name + "' (known: mu C1 eta Dc vc epsT r m zeta)";
+            return out;
+        }
+        prob.parameters.push_back(fp);
+    }
+    if (st.estimateStart) {
+        std::vector<double> mus;
+        for (const CleanRun& c : fitRuns) {
+            const double m = estimateMu(c);
+            if (m > 0) mus.push_back(m);
+        }
+        if (!mus.empty()) {
+            std::sort(mus.begin(), mus.end());
+            for (FitParameter& fp : prob.parameters)
+                if (fp.name == "mu" || fp.name == "C1") fp.value = std::clamp(mus[mus.size() / 2], fp.lower, fp.upper);
+        }
+    }
+    for (const auto& [name, v] : st.start) {
+        if (!lawHas(st.law, name)) continue;
+        bool found = false;
+        for (FitParameter& fp : prob.parameters)
+            if (fp.name == name) { fp.value = std::clamp(v, fp.lower, fp.upper); found = true; }
+        if (!found) {
+            FitParameter fp;
+            if (!defaultParameter(name, st.setup, fp)) fp = FitParameter{name, v, v - 1.0, v + 1.0, false, ParamScale::Linear};
+            fp.value = v;
+            fp.lower = std::min(fp.lower, v);
+            fp.upper = std::max(fp.upper, v);
+            fp.free = false;
+            prob.parameters.push_back(fp);
+        }
+    }
+    auto specFor = [&](const std::vector<double>& vals) {
+        ModelSpec m;
+        m.law = st.law;
+        m.tieC1ToMu = st.tieC1ToMu;
+        for (size_t i = 0; i < prob.parameters.size(); ++i) m.values[prob.parameters[i].name] = vals[i];
+        return m;
+    };
+    // Residual layout from one prediction at the start (indices do not depend on parameters).
+    std::vector<double> startVals;
+    for (const FitParameter& fp : prob.parameters) startVals.push_back(fp.value);
+    std::vector<std::vector<size_t>> layout;
+    std::vector<double> normF, normX;
+    size_t count = 0;
+    for (const CleanRun& c : fitRuns) {
+        Prediction p = predictRun(c, st.setup, specFor(startVals), st.predict);
+        if (!p.ok) {
+            out.message = "cannot simulate at the starting values: " + p.message;
+            return out;
+        }
+        normF.push_back(std::max(rmsOf(c.run[Signal::Friction], p.index), 1e-12));
+        normX.push_back(st.setup == SetupKind::Dynamics ? std::max(rmsOf(c.run[Signal::SliderDisp], p.index), 1e-15) : 1.0);
+        count += p.index.size() * (st.setup == SetupKind::Dynamics ? 2 : 1);
+        layout.push_back(p.index);
+    }
+    prob.residualCount = count;
+    prob.residuals = [&](const std::vector<double>& vals, std::vector<double>& r) {
+        const ModelSpec m = specFor(vals);
+        size_t o = 0;
+        for (size_t k = 0; k < fitRuns.size(); ++k) {
+            const Prediction p = predictRun(fitRuns[k], st.setup, m, st.predict);
+            if (!p.ok || p.index.size() != layout[k].size()) return false;
+            const std::vector<double>& F = fitRuns[k].run[Signal::Friction];
+            for (size_t j = 0; j < p.index.size(); ++j) {
+                r[o++] = (p.force_N[j] - F[p.index[j]]) / normF[k];
+                if (st.setup == SetupKind::Dynamics)
+                    r[o++] = (p.slider_m[j] - fitRuns[k].run[Signal::SliderDisp][p.index[j]]) / normX[k];
+            }
+        }
+        return o == r.size();
+    };
+    prob.multistarts = st.multistarts;
+    prob.loss = st.loss;
+    prob.lossScale = st.lossScale;
+    prob.seed = st.seed;
+    prob.maxIterations = st.maxIterations;
+    prob.cancel = st.cancel;
+    prob.progress = st.progress;
+    out.fit = fitLeastSquares(prob);
+    if (!dropped.empty()) {
+        std::string d;
+        for (const auto& n : dropped) d += (d.empty() ? "" : ", ") + n;
+        out.fit.solverSummary = std::string("not in the ") + toString(st.law) + " law, not fitted: " + d + "\n" + out.fit.solverSummary;
+    }
+    if (!out.fit.ok()) {
+        out.message = out.fit.message;
+        return out;
+    }
+    out.model = specFor(out.fit.values);
+    double sseF = 0, ssF = 0, sseV = 0, ssV = 0;
+    for (const CleanRun& c : fitRuns) {
+        RunScore s = scoreRun(c, st.setup, out.model, st.predict, "fit");
+        if (s.ok) { sseF += s.sse; ssF += s.ssMeasured; }
+        out.runs.push_back(std::move(s));
+    }
+    for (const CleanRun& c : valRuns) {
+        RunScore s = scoreRun(c, st.setup, out.model, st.predict, "validation");
+        if (s.ok) { sseV += s.sse; ssV += s.ssMeasured; }
+        out.runs.push_back(std::move(s));
+    }
+    out.fitNrmse = ssF > 0 ? std::sqrt(sseF / ssF) : std::numeric_limits<double>::quiet_NaN();
+    out.validationNrmse = ssV > 0 ? std::sqrt(sseV / ssV) : std::numeric_limits<double>::quiet_NaN();
+    out.ok = true;
+    return out;
+}
+
+}  // namespace stickslip::identify

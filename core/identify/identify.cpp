@@ -1,0 +1,675 @@
+#include "identify.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+
+#include "fit.hpp"
+
+namespace stickslip::identify {
+
+bool makeIdentifyRun(const CleanRun& c, SetupKind setup, IdentifyRun& out, std::string* error) {
+    using io::Signal;
+    const io::Run& r = c.run;
+    auto need = [&](Signal s, const char* what) {
+        if (r.has(s)) return true;
+        if (error) *error = r.file + ": no " + what + " signal (column " + io::defaultColumn(s) + ")";
+        return false;
+    };
+    if (!need(Signal::Time, "time") || !need(Signal::Friction, "friction force") || !need(Signal::Slip, "slip") ||
+        !need(Signal::RelVel, "relative velocity"))
+        return false;
+    if (setup == SetupKind::Dynamics && !need(Signal::SliderDisp, "slider displacement")) return false;
+    const size_t b = std::min(c.begin, r.size()), e = std::min(c.end, r.size());
+    if (e < b + 10) {
+        if (error) *error = r.file + ": fewer than 10 samples left after trimming";
+        return false;
+    }
+    auto cut = [&](Signal s) {
+        if (!r.has(s)) return std::vector<double>{};
+        return std::vector<double>(r[s].begin() + b, r[s].begin() + e);
+    };
+    IdentifyRun o;
+    o.file = r.file;
+    o.setup = setup;
+    o.t_s = cut(Signal::Time);
+    o.slip_m = cut(Signal::Slip);
+    o.relVel_mps = cut(Signal::RelVel);
+    o.force_N = cut(Signal::Friction);
+    if (setup == SetupKind::Dynamics) {
+        o.slider_m = cut(Signal::SliderDisp);
+        o.sliderVel_mps = cut(Signal::SliderVel);
+        o.accel_mps2 = cut(Signal::SliderAccel);
+        if (o.sliderVel_mps.empty() || o.accel_mps2.empty()) {
+            // ẋ and ẍ by Savitzky–Golay from x when not measured.
+            const auto& x = r[Signal::SliderDisp];
+            auto v = savitzkyGolay(x, c.dt_s, 7, 3, 1), a = savitzkyGolay(x, c.dt_s, 7, 3, 2);
+            if (o.sliderVel_mps.empty()) o.sliderVel_mps.assign(v.begin() + b, v.begin() + e);
+            if (o.accel_mps2.empty()) o.accel_mps2.assign(a.begin() + b, a.begin() + e);
+        }
+    } else {
+        auto a = savitzkyGolay(r[Signal::Slip], c.dt_s, 7, 3, 2);
+        o.accel_mps2.assign(a.begin() + b, a.begin() + e);
+    }
+    double v = 0;
+    o.normalForce_N = r.setting("tN", v) ? v : 1.0;
+    if (r.setting("k", v)) o.stiffness_N_per_m = v;
+    if (r.setting("m", v)) o.nominalMass_kg = v;
+    if (r.setting("f", v)) o.frequency_Hz = v;
+    else if (c.period_s > 0) o.frequency_Hz = 1.0 / c.period_s;
+    if (setup == SetupKind::Dynamics && !(o.stiffness_N_per_m > 0)) {
+        if (error) *error = r.file + ": dynamics set-up needs the rig stiffness k (manifest or --run-set FILE:k=VALUE)";
+        return false;
+    }
+    out = std::move(o);
+    return true;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A run prepared for fast repeated evaluation: decimated samples, weights.
+struct Prepared {
+    const IdentifyRun* run = nullptr;
+    std::vector<double> t, g, V, F, a, x, xd;
+    double invRmsF = 1.0;
+    size_t size() const { return t.size(); }
+};
+
+// The parameter vector of a model: names → values; which names are free.
+struct Spec {
+    std::vector<std::string> effects;   // catalogue names, in order added
+};
+
+struct Context {
+    std::vector<Prepared> runs;
+    const IdentifyOptions* opt = nullptr;
+    bool anyDynamics = false;
+    double tNref = 1.0;
+};
+
+void applyLaw(RateStateParams& p, const std::string& name, double v) {
+    if (name == "mu") p.mu = v;
+    else if (name == "C1") p.C1 = v;
+    else if (name == "eta") p.eta_s_per_m = v;
+    else if (name == "Dc") p.Dc_m = v;
+    else if (name == "vc") p.vc_mps = v;
+    else if (name == "epsT") p.epsT_N_per_m = v;
+    else if (name == "r") p.r = v;
+}
+
+double lawValue(const RateStateParams& p, const std::string& name) {
+    if (name == "mu") return p.mu;
+    if (name == "C1") return p.C1;
+    if (name == "eta") return p.eta_s_per_m;
+    if (name == "Dc") return p.Dc_m;
+    if (name == "vc") return p.vc_mps;
+    if (name == "epsT") return p.epsT_N_per_m;
+    if (name == "r") return p.r;
+    return kNaN;
+}
+
+// Model from a flat map of values ("mu", "m", "frictional_lag.tau_s", …).
+ExtendedModel buildModel(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, double& mass) {
+    ExtendedModel m;
+    m.law = cx.opt->start;
+    for (const auto& [k, v] : vals) applyLaw(m.law, k, v);
+    m.tNref_N = cx.tNref;
+    for (const std::string& e : spec.effects) {
+        EffectInfo info;
+        findEffect(e, info);
+        std::vector<double> pv;
+        for (const auto& p : info.params) pv.push_back(vals.at(e + "." + p.name));
+        setEffect(m.effects, e, pv);
+    }
+    auto it = vals.find("m");
+    mass = it != vals.end() ? it->second : kNaN;
+    return m;
+}
+
+// Residuals of one run appended to `r`; per-run sum of squares and count; predicted force.
+bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, double mass, std::vector<double>& r,
+                  double& ss, double& count, std::vector<double>* predicted, std::vector<char>* used,
+                  std::vector<double>* frictionResidual) {
+    const IdentifyRun& run = *p.run;
+    RunContext ctx{run.normalForce_N, run.slipBefore_m};
+    const size_t n = p.size();
+    ss = 0;
+    count = 0;
+    if (predicted) predicted->assign(n, 0.0);
+    if (used) used->assign(n, 0);
+    if (frictionResidual) frictionResidual->assign(n, 0.0);
+    if (run.setup == SetupKind::Prescribed) {
+        const ExtendedTrace tr = simulateExtendedPrescribed(m, ctx, p.t, p.g, p.a.empty() ? nullptr : &p.a,
+                                                            cx.opt->substeps);
+        if (!tr.ok()) return false;
+        for (size_t i = 0; i < n; ++i) {
+            const double e = (tr.measuredForce_N[i] - p.F[i]) * p.invRmsF;
+            r.push_back(e);
+            ss += e * e;
+            count += 1;
+            if (predicted) (*predicted)[i] = tr.measuredForce_N[i];
+            if (used) (*used)[i] = 1;
+            if (frictionResidual) (*frictionResidual)[i] = p.F[i] - tr.measuredForce_N[i];
+        }
+        return true;
+    }
+    // Dynamics: sliding-phase friction channel + equation-of-motion channel.
+    const SlipPhasePrediction sp = simulateSlipPhaseForce(m, ctx, p.t, p.V, p.a.empty() ? nullptr : &p.a,
+                                                          cx.opt->stickVelocity_mps);
+    const double mm = std::isfinite(mass) ? mass : run.nominalMass_kg;
+    const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
+    const double c = 2.0 * zeta * std::sqrt(run.stiffness_N_per_m * mm);
+    const double ms = m.effects.sensorInertia ? m.effects.sensorInertia->mass_kg : 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        double e = 0;
+        if (sp.sliding[i]) {
+            e = (sp.force_N[i] - p.F[i]) * p.invRmsF;
+            ss += e * e;
+            count += 1;
+            if (frictionResidual) (*frictionResidual)[i] = p.F[i] - sp.force_N[i];
+        }
+        r.push_back(e);
+        if (predicted) (*predicted)[i] = sp.sliding[i] ? sp.force_N[i] : kNaN;
+        if (used) (*used)[i] = sp.sliding[i];
+    }
+    for (size_t i = 0; i < n; ++i) {
+        const double fm = (mm + ms) * p.a[i] + c * p.xd[i] + run.stiffness_N_per_m * p.x[i];
+        const double e = (fm - p.F[i]) * p.invRmsF;
+        r.push_back(e);
+        ss += e * e;
+        count += 1;
+    }
+    return true;
+}
+
+size_t residualCount(const Context& cx, const std::vector<size_t>& idx) {
+    size_t n = 0;
+    for (size_t i : idx) n += cx.runs[i].size() * (cx.runs[i].run->setup == SetupKind::Dynamics ? 2 : 1);
+    return n;
+}
+
+struct FitOutcome {
+    bool ok = false;
+    std::string message;
+    std::map<std::string, double> values;
+    std::vector<ParamEstimate> estimates;
+    double ss = 0, count = 0;   // over the fitted runs
+    int nFree = 0;
+    FitResult fit;
+};
+
+// Parameters of the model `spec`: baseline free law parameters, m* (dynamics), effect params.
+std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const std::map<std::string, double>& start) {
+    std::vector<FitParameter> ps;
+    const SetupKind setup = cx.anyDynamics ? SetupKind::Dynamics : SetupKind::Prescribed;
+    for (const std::string& n : cx.opt->freeLaw) {
+        FitParameter p;
+        if (!defaultParameter(n, setup, p)) continue;
+        auto it = start.find(n);
+        p.value = it != start.end() ? it->second : lawValue(cx.opt->start, n);
+        p.value = std::clamp(p.value, p.lower, p.upper);
+        ps.push_back(p);
+    }
+    if (cx.anyDynamics && cx.opt->fitMass) {
+        FitParameter p{"m", 0.53, 0.05, 5.0, true, ParamScale::Log};
+        auto it = start.find("m");
+        if (it != start.end()) p.value = it->second;
+        ps.push_back(p);
+    }
+    for (const std::string& e : spec.effects) {
+        EffectInfo info;
+        findEffect(e, info);
+        for (const EffectParam& q : info.params) {
+            FitParameter p{e + "." + q.name, q.initial, q.lower, q.upper, true, q.logScale ? ParamScale::Log : ParamScale::Linear};
+            auto it = start.find(p.name);
+            if (it != start.end()) p.value = it->second;
+            ps.push_back(p);
+        }
+    }
+    return ps;
+}
+
+FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
+                   const std::vector<size_t>& idx, int multistarts, long& fits) {
+    FitOutcome out;
+    FitProblem prob;
+    prob.parameters = parameters(cx, spec, start);
+    prob.residualCount = residualCount(cx, idx);
+    prob.multistarts = multistarts;
+    prob.seed = cx.opt->seed;
+    prob.cancel = cx.opt->cancel;
+    prob.maxIterations = 40;
+    prob.functionTolerance = 1e-7;
+    prob.parameterTolerance = 1e-7;
+    const auto names = [&] {
+        std::vector<std::string> v;
+        for (const auto& p : prob.parameters) v.push_back(p.name);
+        return v;
+    }();
+    prob.residuals = [&cx, &spec, &idx, names](const std::vector<double>& pv, std::vector<double>& r) {
+        std::map<std::string, double> vals;
+        for (size_t i = 0; i < names.size(); ++i) vals[names[i]] = pv[i];
+        double mass = kNaN;
+        const ExtendedModel m = buildModel(cx, spec, vals, mass);
+        r.clear();
+        for (size_t i : idx) {
+            double ss = 0, n = 0;
+            if (!runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr)) return false;
+        }
+        return true;
+    };
+    ++fits;
+    out.fit = fitLeastSquares(prob);
+    if (!out.fit.ok()) {
+        out.message = out.fit.message;
+        return out;
+    }
+    out.ok = true;
+    for (size_t i = 0; i < out.fit.names.size(); ++i) {
+        out.values[out.fit.names[i]] = out.fit.values[i];
+        if (out.fit.free[i]) {
+            out.estimates.push_back({out.fit.names[i], out.fit.values[i], out.fit.stderrs[i]});
+            ++out.nFree;
+        }
+    }
+    double mass = kNaN;
+    const ExtendedModel m = buildModel(cx, spec, out.values, mass);
+    std::vector<double> r;
+    for (size_t i : idx) {
+        double ss = 0, n = 0;
+        runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr);
+        out.ss += ss;
+        out.count += n;
+    }
+    return out;
+}
+
+// Per-run errors of a fitted model: in-sample for the fit runs, prediction for validation
+// runs; held-out errors by leave-one-run-out (fit runs) when there are no validation runs.
+ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
+                     const std::vector<size_t>& valIdx, long& fits) {
+    ModelErrors me;
+    double mass = kNaN;
+    const ExtendedModel m = buildModel(cx, spec, full.values, mass);
+    double fitSS = 0, fitN = 0, valSS = 0, valN = 0;
+    for (size_t i = 0; i < cx.runs.size(); ++i) {
+        const bool isVal = std::find(valIdx.begin(), valIdx.end(), i) != valIdx.end();
+        std::vector<double> r, fr;
+        std::vector<char> used;
+        double ss = 0, n = 0;
+        runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, &used, &fr);
+        RunError e;
+        e.file = cx.runs[i].run->file;
+        e.role = isVal ? "validation" : "fit";
+        e.nrmse = n > 0 ? std::sqrt(ss / n) : 0.0;
+        double fs = 0, fn = 0;
+        for (size_t k = 0; k < fr.size(); ++k)
+            if (used[k]) { fs += fr[k] * fr[k]; fn += 1; }
+        e.rms_N = fn > 0 ? std::sqrt(fs / fn) : 0.0;
+        if (isVal) {
+            e.heldOutNrmse = e.nrmse;
+            valSS += ss; valN += n;
+        } else {
+            fitSS += ss; fitN += n;
+        }
+        me.runs.push_back(e);
+    }
+    me.fitNrmse = fitN > 0 ? std::sqrt(fitSS / fitN) : 0.0;
+    if (valIdx.empty() && fitIdx.size() >= 2) {
+        // Leave one run out in turn, warm-started from the full fit.
+        for (size_t h : fitIdx) {
+            if (cx.opt->cancel && cx.opt->cancel->load()) break;
+            std::vector<size_t> rest;
+            for (size_t i : fitIdx) if (i != h) rest.push_back(i);
+            const FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, fits);
+            if (!f.ok) continue;
+            double mh = kNaN;
+            const ExtendedModel mo = buildModel(cx, spec, f.values, mh);
+            std::vector<double> r;
+            double ss = 0, n = 0;
+            if (!runResiduals(cx, cx.runs[h], mo, mh, r, ss, n, nullptr, nullptr, nullptr)) continue;
+            me.runs[h].heldOutNrmse = n > 0 ? std::sqrt(ss / n) : 0.0;
+            valSS += ss; valN += n;
+        }
+    }
+    me.validationNrmse = valN > 0 ? std::sqrt(valSS / valN) : kNaN;
+    return me;
+}
+
+// Diagnostics of a fitted model's force residual (friction channel, samples compared).
+Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds) {
+    double mass = kNaN;
+    const ExtendedModel m = buildModel(cx, spec, f.values, mass);
+    std::vector<DiagnosticRun> dr;
+    for (size_t i = 0; i < cx.runs.size(); ++i) {
+        const Prepared& p = cx.runs[i];
+        std::vector<double> r, fr, pred;
+        std::vector<char> used;
+        double ss = 0, n = 0;
+        runResiduals(cx, p, m, mass, r, ss, n, &pred, &used, &fr);
+        if (preds) preds->push_back(pred);
+        DiagnosticRun d;
+        d.t_s = p.t;
+        d.residual = fr;
+        d.slip_m = p.g;
+        d.relVel_mps = p.V;
+        d.accel_mps2 = p.a;
+        d.normalForce_N = p.run->normalForce_N;
+        d.forcingFrequency_Hz = p.run->frequency_Hz;
+        d.accumulatedSlipStart_m = p.run->slipBefore_m;
+        d.runIndex = static_cast<int>(i);
+        dr.push_back(std::move(d));
+    }
+    const double fs = cx.runs.empty() || cx.runs[0].size() < 2 ? 1.0 : 1.0 / (cx.runs[0].t[1] - cx.runs[0].t[0]);
+    // Decimate to about 2× the 100 Hz measurement bandwidth before the whiteness test.
+    const int dec = std::max(1, static_cast<int>(std::floor(fs / 200.0)));
+    return diagnose(dr, dec, cx.opt->stickVelocity_mps);
+}
+
+double bic(double ss, double n, double tau, int p) {
+    const double neff = std::max(n / std::max(tau, 1.0), 2.0);
+    return neff * std::log(std::max(ss, 1e-300) / std::max(n, 1.0)) + p * std::log(neff);
+}
+
+}  // namespace
+
+IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOptions& opt) {
+    const auto t0 = Clock::now();
+    IdentifyResult res;
+    auto progress = [&](const std::string& s, double f) { if (opt.progress) opt.progress(s, f); };
+    if (runs.empty()) { res.message = "no runs"; return res; }
+    Context cx;
+    cx.opt = &opt;
+    // Slip accumulated before each run, in the order given (runs recorded on one specimen).
+    double slip = 0, tNsum = 0;
+    for (IdentifyRun& r : runs) {
+        if (r.t_s.size() < 10 || r.force_N.size() != r.t_s.size() || r.slip_m.size() != r.t_s.size() ||
+            r.relVel_mps.size() != r.t_s.size()) {
+            res.message = r.file + ": run needs >= 10 samples of time, slip, velocity and force of equal length";
+            return res;
+        }
+        if (r.setup == SetupKind::Dynamics &&
+            (r.slider_m.size() != r.t_s.size() || r.sliderVel_mps.size() != r.t_s.size() || r.accel_mps2.size() != r.t_s.size())) {
+            res.message = r.file + ": dynamics run needs slider displacement, velocity and acceleration";
+            return res;
+        }
+        r.slipBefore_m = slip;
+        for (size_t i = 1; i < r.slip_m.size(); ++i) slip += std::abs(r.slip_m[i] - r.slip_m[i - 1]);
+        tNsum += r.normalForce_N;
+        if (r.setup == SetupKind::Dynamics) cx.anyDynamics = true;
+    }
+    res.setup = cx.anyDynamics ? "dynamics" : "prescribed";
+    cx.tNref = tNsum / runs.size();
+    const size_t dec = static_cast<size_t>(std::max(opt.decimate, 1));
+    for (const IdentifyRun& r : runs) {
+        Prepared p;
+        p.run = &r;
+        double ss = 0;
+        for (double f : r.force_N) ss += f * f;
+        p.invRmsF = ss > 0 ? 1.0 / std::sqrt(ss / r.force_N.size()) : 1.0;
+        for (size_t i = 0; i < r.t_s.size(); i += dec) {
+            p.t.push_back(r.t_s[i]);
+            p.g.push_back(r.slip_m[i]);
+            p.V.push_back(r.relVel_mps[i]);
+            p.F.push_back(r.force_N[i]);
+            if (!r.accel_mps2.empty()) p.a.push_back(r.accel_mps2[i]);
+            if (r.setup == SetupKind::Dynamics) {
+                p.x.push_back(r.slider_m[i]);
+                p.xd.push_back(r.sliderVel_mps[i]);
+            }
+        }
+        cx.runs.push_back(std::move(p));
+    }
+    std::vector<size_t> fitIdx, valIdx;
+    for (size_t i = 0; i < runs.size(); ++i) (runs[i].validation ? valIdx : fitIdx).push_back(i);
+    if (fitIdx.empty()) { res.message = "every run is a validation run: nothing to fit"; return res; }
+
+    std::vector<std::string> cands = opt.candidates;
+    if (cands.empty())
+        for (const EffectInfo& e : effectCatalogue()) cands.push_back(e.name);
+    for (const std::string& c : cands) {
+        EffectInfo info;
+        if (!findEffect(c, info)) { res.message = "unknown effect '" + c + "'"; return res; }
+    }
+
+    // Baseline.
+    progress("baseline", 0.0);
+    Spec spec;
+    std::map<std::string, double> start;
+    if (cx.anyDynamics) start["m"] = runs[fitIdx[0]].nominalMass_kg;
+    FitOutcome cur = fitSpec(cx, spec, start, fitIdx, opt.multistarts, res.fits);
+    if (!cur.ok) {
+        res.cancelled = opt.cancel && opt.cancel->load();
+        res.message = "baseline fit failed: " + cur.message;
+        return res;
+    }
+    res.baseline = cur.estimates;
+    res.before = errorsOf(cx, spec, cur, fitIdx, valIdx, res.fits);
+    std::vector<std::vector<double>> predBefore;
+    res.diagnosticsBefore = diagnoseModel(cx, spec, cur, &predBefore);
+    Diagnostics curDiag = res.diagnosticsBefore;
+    double curHeldOut = res.before.validationNrmse;
+
+    std::map<std::string, CandidateScore> scores;
+    for (int round = 1; round <= opt.maxEffects; ++round) {
+        if (opt.cancel && opt.cancel->load()) { res.cancelled = true; break; }
+        const double tau = curDiag.integratedAcfTime;
+        const double bicCur = bic(cur.ss, cur.count, tau, cur.nFree);
+        std::vector<std::pair<CandidateScore, FitOutcome>> tried;
+        size_t k = 0;
+        for (const std::string& c : cands) {
+            ++k;
+            if (std::find(spec.effects.begin(), spec.effects.end(), c) != spec.effects.end()) continue;
+            progress("round " + std::to_string(round) + ": " + c, (k - 1.0) / cands.size());
+            CandidateScore sc;
+            sc.name = c;
+            sc.round = round;
+            EffectInfo info;
+            findEffect(c, info);
+            bool allDyn = true;
+            for (size_t i : fitIdx) allDyn = allDyn && runs[i].setup == SetupKind::Dynamics;
+            if (allDyn && (c == "backlash" || c == "presliding_compliance")) {
+                sc.applicable = false;
+                sc.reason = "not observable in the dynamics residual (rigid-contact sliding channel + equation of motion): acts only inside stick";
+                scores[c] = sc;
+                continue;
+            }
+            Spec s2 = spec;
+            s2.effects.push_back(c);
+            const FitOutcome f = fitSpec(cx, s2, cur.values, fitIdx, opt.multistarts, res.fits);
+            if (!f.ok) {
+                sc.reason = "fit failed: " + f.message;
+                scores[c] = sc;
+                continue;
+            }
+            sc.deltaBic = bic(f.ss, f.count, tau, f.nFree) - bicCur;
+            sc.fitNrmse = f.count > 0 ? std::sqrt(f.ss / f.count) : 0.0;
+            for (const ParamEstimate& p : f.estimates)
+                if (p.name.rfind(c + ".", 0) == 0) sc.params.push_back({p.name.substr(c.size() + 1), p.value, p.stderr_});
+            tried.push_back({sc, f});
+        }
+        if (tried.empty()) break;
+        std::sort(tried.begin(), tried.end(), [](const auto& a, const auto& b) { return a.first.deltaBic < b.first.deltaBic; });
+        auto& [best, bestFit] = tried.front();
+        bool accept = best.deltaBic < -opt.bicMargin;
+        Spec s2 = spec;
+        s2.effects.push_back(best.name);
+        ModelErrors me;
+        if (accept) {
+            progress("round " + std::to_string(round) + ": held-out check of " + best.name, 1.0);
+            me = errorsOf(cx, s2, bestFit, fitIdx, valIdx, res.fits);
+            best.heldOutNrmse = me.validationNrmse;
+            if (std::isfinite(curHeldOut) && std::isfinite(me.validationNrmse) && !(me.validationNrmse < curHeldOut)) {
+                accept = false;
+                best.reason = "lowers the fit error (dBIC " + std::to_string(best.deltaBic) + ") but not the held-out error (" +
+                              std::to_string(me.validationNrmse) + " vs " + std::to_string(curHeldOut) + ")";
+            }
+        } else {
+            best.reason = "best candidate of round " + std::to_string(round) + " but dBIC = " + std::to_string(best.deltaBic) +
+                          " is not below -" + std::to_string(opt.bicMargin) + ": improvement within what noise explains";
+        }
+        for (size_t i = 1; i < tried.size(); ++i) {
+            CandidateScore& sc = tried[i].first;
+            if (sc.deltaBic >= -opt.bicMargin)
+                sc.reason = "dBIC = " + std::to_string(sc.deltaBic) + " is not below -" + std::to_string(opt.bicMargin) +
+                            ": improvement within what noise explains";
+            else
+                sc.reason = "dBIC = " + std::to_string(sc.deltaBic) + " but " + best.name + " scored better in round " +
+                            std::to_string(round);
+        }
+        for (auto& [sc, f] : tried) scores[sc.name] = sc;
+        if (!accept) break;
+        best.accepted = true;
+        scores[best.name] = best;
+        AddedEffect ae;
+        ae.name = best.name;
+        ae.params = best.params;
+        ae.deltaBic = best.deltaBic;
+        ae.heldOutBefore = curHeldOut;
+        ae.heldOutAfter = me.validationNrmse;
+        EffectInfo info;
+        findEffect(best.name, info);
+        for (const std::string& sname : info.pointers)
+            for (const SignalCorrelation& c : curDiag.correlations)
+                if (c.signal == sname) ae.pointedBy.push_back(c);
+        res.effectsAdded.push_back(ae);
+        spec = s2;
+        cur = bestFit;
+        curHeldOut = me.validationNrmse;
+        res.after = me;
+        curDiag = diagnoseModel(cx, spec, cur, nullptr);
+    }
+    for (const std::string& c : cands)
+        if (scores.count(c)) res.candidates.push_back(scores[c]);
+    if (res.effectsAdded.empty()) res.after = res.before;
+    // Final parameters (effect parameters kept under "effect.param" names).
+    res.final = cur.estimates;
+    std::vector<std::vector<double>> predAfter;
+    res.diagnosticsAfter = diagnoseModel(cx, spec, cur, &predAfter);
+    res.unexplained = !res.diagnosticsAfter.whiteness.white;
+    if (res.unexplained) {
+        const auto& cs = res.diagnosticsAfter.correlations;
+        auto top = std::max_element(cs.begin(), cs.end(), [](const auto& a, const auto& b) {
+            return std::abs(a.correlation) < std::abs(b.correlation);
+        });
+        res.unexplainedReason = "residual is not white after the loop (Ljung-Box p = " +
+                                std::to_string(res.diagnosticsAfter.whiteness.pValue) + "); largest correlation: " +
+                                (top != cs.end() ? top->signal + " r = " + std::to_string(top->correlation) : "none") +
+                                "; no catalogue candidate lowered the penalised and held-out error further";
+    }
+    for (size_t i = 0; i < cx.runs.size(); ++i) {
+        const Prepared& p = cx.runs[i];
+        RunTrace t;
+        t.file = p.run->file;
+        t.t_s = p.t;
+        t.relVel_mps = p.V;
+        t.measured_N = p.F;
+        t.before_N = predBefore[i];
+        t.after_N = predAfter[i];
+        t.used.assign(p.size(), 1);
+        for (size_t k = 0; k < p.size(); ++k) t.used[k] = std::isfinite(t.before_N[k]) && std::isfinite(t.after_N[k]);
+        res.traces.push_back(std::move(t));
+    }
+    res.ok = true;
+    res.cancelled = res.cancelled || (opt.cancel && opt.cancel->load());
+    res.wallTime_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    progress("done", 1.0);
+    return res;
+}
+
+namespace {
+
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json toJson(const std::vector<ParamEstimate>& ps) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const ParamEstimate& p : ps) j[p.name] = {{"value", num(p.value)}, {"stderr", num(p.stderr_)}};
+    return j;
+}
+
+nlohmann::json toJson(const ModelErrors& e) {
+    nlohmann::json runs = nlohmann::json::array();
+    for (const RunError& r : e.runs)
+        runs.push_back({{"file", r.file}, {"role", r.role}, {"rms_N", num(r.rms_N)}, {"nrmse", num(r.nrmse)},
+                        {"held_out_nrmse", num(r.heldOutNrmse)}});
+    return {{"fit_nrmse", num(e.fitNrmse)}, {"validation_nrmse", num(e.validationNrmse)}, {"runs", runs}};
+}
+
+}  // namespace
+
+nlohmann::json toJson(const Diagnostics& d, bool withSeries) {
+    nlohmann::json corr = nlohmann::json::object();
+    for (const SignalCorrelation& c : d.correlations) corr[c.signal] = num(c.correlation);
+    nlohmann::json j = {{"rms", num(d.rms)},
+                        {"correlations", corr},
+                        {"whiteness",
+                         {{"test", "Ljung-Box"},
+                          {"lags", d.whiteness.lags},
+                          {"decimation", d.whiteness.decimation},
+                          {"Q", num(d.whiteness.ljungBoxQ)},
+                          {"p_value", num(d.whiteness.pValue)},
+                          {"white", d.whiteness.white}}},
+                        {"integrated_acf_time_samples", num(d.integratedAcfTime)},
+                        {"spectrum_harmonic_fraction", num(d.spectrum.harmonicFraction)},
+                        {"forcing_harmonics_Hz", d.spectrum.harmonics_Hz}};
+    if (withSeries) {
+        j["acf"] = d.whiteness.acf;
+        // Spectrum up to 150 Hz (the measurement bandwidth).
+        nlohmann::json f = nlohmann::json::array(), p = nlohmann::json::array();
+        for (size_t k = 0; k < d.spectrum.frequency_Hz.size() && d.spectrum.frequency_Hz[k] <= 150.0; ++k) {
+            f.push_back(d.spectrum.frequency_Hz[k]);
+            p.push_back(d.spectrum.power[k]);
+        }
+        j["spectrum"] = {{"frequency_Hz", f}, {"power", p}};
+    }
+    return j;
+}
+
+nlohmann::json toJson(const IdentifyResult& r) {
+    nlohmann::json j;
+    j["ok"] = r.ok;
+    if (!r.message.empty()) j["message"] = r.message;
+    j["setup"] = r.setup;
+    j["baseline"] = {{"model", "rate-state"}, {"parameters", toJson(r.baseline)}};
+    j["before"] = toJson(r.before);
+    j["after"] = toJson(r.after);
+    j["final_parameters"] = toJson(r.final);
+    nlohmann::json added = nlohmann::json::array();
+    for (const AddedEffect& e : r.effectsAdded) {
+        nlohmann::json pointed = nlohmann::json::object();
+        for (const SignalCorrelation& c : e.pointedBy) pointed[c.signal] = num(c.correlation);
+        added.push_back({{"name", e.name},
+                         {"parameters", toJson(e.params)},
+                         {"diagnostics", {{"correlations_before", pointed}}},
+                         {"delta_bic", num(e.deltaBic)},
+                         {"held_out_nrmse_before", num(e.heldOutBefore)},
+                         {"held_out_nrmse_after", num(e.heldOutAfter)}});
+    }
+    j["effects_added"] = added;
+    nlohmann::json cands = nlohmann::json::array();
+    for (const CandidateScore& c : r.candidates)
+        cands.push_back({{"name", c.name},
+                         {"round", c.round},
+                         {"applicable", c.applicable},
+                         {"accepted", c.accepted},
+                         {"score", {{"delta_bic", num(c.deltaBic)}, {"fit_nrmse", num(c.fitNrmse)},
+                                    {"held_out_nrmse", c.heldOutNrmse >= 0 ? num(c.heldOutNrmse) : nlohmann::json(nullptr)}}},
+                         {"parameters", toJson(c.params)},
+                         {"rejected_because", c.accepted ? nlohmann::json(nullptr) : nlohmann::json(c.reason)}});
+    j["candidates"] = cands;
+    j["diagnostics"] = {{"before", toJson(r.diagnosticsBefore, true)}, {"after", toJson(r.diagnosticsAfter, true)}};
+    j["unexplained"] = r.unexplained;
+    if (r.unexplained) j["unexplained_reason"] = r.unexplainedReason;
+    j["selection"] = {{"criterion", "BIC with n_eff = n / tau_int, margin 10, plus lower held-out (leave-one-run-out) NRMSE"}};
+    j["wall_time_s"] = r.wallTime_s;
+    j["fits"] = r.fits;
+    return j;
+}
+
+}  // namespace stickslip::identify

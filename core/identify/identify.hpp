@@ -1,0 +1,138 @@
+// Closing the loop (issue 6): residual → missing effect → extended model → error before and
+// after. Fit the baseline law, diagnose the residual, fit every catalogue effect on top of the
+// current model, add the one that lowers the penalised error most (BIC with the effective
+// number of independent residuals) if it also lowers the held-out error, and repeat until
+// nothing helps. Never claims an effect it did not find; reports remaining structure.
+//
+// Residuals. Prescribed set-up (Fig. 15a): the extended law is run along the measured slip
+// history (simulateExtendedPrescribed); residual = predicted − measured force, all samples.
+// Dynamics set-up (Fig. 15b): measured slip g has ~10 µm noise, which a stiff contact turns
+// into newtons during stick, so the law is used in its rigid-contact limit along the measured
+// slip velocity (simulateSlipPhaseForce) and compared with the measured force while sliding;
+// a second channel checks the equation of motion F = m ẍ + c ẋ + k x (Eq. 8) at every sample,
+// which is where rig effects (viscous_damping) show. Each channel is divided by the RMS of the
+// run's measured force, so NRMSE = RMS(residual) over the samples a run contributes.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "../params.hpp"
+#include "diagnostics.hpp"
+#include "extended_model.hpp"
+#include "preprocess.hpp"
+
+namespace stickslip::identify {
+
+// One measured run ready for the loop (SI units, uniform step, cleaned).
+struct IdentifyRun {
+    std::string file;
+    SetupKind setup = SetupKind::Prescribed;
+    bool validation = false;             // given with --validate-on: never fitted
+    std::vector<double> t_s;
+    std::vector<double> slip_m;          // g
+    std::vector<double> relVel_mps;      // V
+    std::vector<double> force_N;         // measured friction force
+    std::vector<double> accel_mps2;      // acceleration of the sensed body (ẍ, or g̈ if prescribed); may be empty
+    std::vector<double> slider_m, sliderVel_mps;  // dynamics only
+    double normalForce_N = 1.0;          // t_N (or the load that sets it)
+    double stiffness_N_per_m = 0.0;      // k (dynamics)
+    double nominalMass_kg = 0.53;        // m* start value (dynamics)
+    double frequency_Hz = 0.0;           // f (0: unknown)
+    double slipBefore_m = 0.0;           // slip accumulated before this run (wear_drift); set by identifyEffects
+};
+
+// From a preprocessed run (samples [begin, end)); false with a message if signals are missing.
+bool makeIdentifyRun(const CleanRun& clean, SetupKind setup, IdentifyRun& out, std::string* error);
+
+struct IdentifyOptions {
+    RateStateParams start;                                        // starting law values (μ, η, …, ε_T fixed unless free)
+    std::vector<std::string> freeLaw = {"mu", "C1", "eta", "vc"}; // baseline free law parameters
+    bool fitMass = true;                                          // dynamics: m* free (rig channel)
+    double zetaNominal = 0.005;                                   // dynamics: ζ of the baseline rig ("very small")
+    std::vector<std::string> candidates;                          // empty: the whole catalogue
+    int maxEffects = 3;
+    double bicMargin = 10.0;         // ΔBIC must be below −this ("very strong" evidence, Kass & Raftery)
+    int decimate = 4;                // use every n-th sample in the fits
+    int substeps = 2;                // law steps per sample (prescribed)
+    double stickVelocity_mps = 5e-3; // |V| below this counts as stuck (dynamics channel, diagnostics)
+    int multistarts = 2;
+    uint64_t seed = 20260611;
+    const std::atomic<bool>* cancel = nullptr;
+    std::function<void(const std::string& stage, double fraction)> progress;
+};
+
+struct ParamEstimate {
+    std::string name;
+    double value = 0, stderr_ = 0;  // stderr NaN when not identifiable
+};
+
+struct RunError {
+    std::string file;
+    std::string role;          // "fit" or "validation"
+    double rms_N = 0;          // RMS of the force residual [N]
+    double nrmse = 0;          // in-sample (fit runs) or prediction (validation runs)
+    double heldOutNrmse = 0;   // run held out in turn (leave-one-run-out), or = nrmse for validation runs
+};
+
+struct ModelErrors {
+    double fitNrmse = 0;         // pooled over the fit runs, fitted on all of them
+    double validationNrmse = 0;  // pooled over held-out predictions
+    std::vector<RunError> runs;
+};
+
+struct CandidateScore {
+    std::string name;
+    int round = 0;
+    bool applicable = true;
+    bool accepted = false;
+    double deltaBic = 0;        // BIC(with) − BIC(current); < 0 is better
+    double fitNrmse = 0;
+    double heldOutNrmse = -1;   // only computed for the round's best candidate (−1 otherwise)
+    std::vector<ParamEstimate> params;
+    std::string reason;         // why rejected (empty when accepted)
+};
+
+struct AddedEffect {
+    std::string name;
+    std::vector<ParamEstimate> params;
+    std::vector<SignalCorrelation> pointedBy;  // the effect's signals in the residual before it was added
+    double deltaBic = 0;
+    double heldOutBefore = 0, heldOutAfter = 0;
+};
+
+// Per run, for plots: measured and predicted force before and after (fit window).
+struct RunTrace {
+    std::string file;
+    std::vector<double> t_s, relVel_mps, measured_N, before_N, after_N;
+    std::vector<char> used;  // samples compared (dynamics: sliding only)
+};
+
+struct IdentifyResult {
+    bool ok = false;
+    bool cancelled = false;
+    std::string message;
+    std::string setup;
+    std::vector<ParamEstimate> baseline;  // baseline model parameters ± stderr
+    std::vector<ParamEstimate> final;     // final model parameters ± stderr
+    ModelErrors before, after;
+    std::vector<AddedEffect> effectsAdded;
+    std::vector<CandidateScore> candidates;  // every candidate tried, last score
+    Diagnostics diagnosticsBefore, diagnosticsAfter;
+    bool unexplained = false;
+    std::string unexplainedReason;
+    std::vector<RunTrace> traces;
+    double wallTime_s = 0;
+    long fits = 0;
+};
+
+IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOptions& options);
+
+nlohmann::json toJson(const Diagnostics& d, bool withSeries);
+nlohmann::json toJson(const IdentifyResult& r);
+
+}  // namespace stickslip::identify

@@ -1,0 +1,142 @@
+#include "predict.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "../integrate/dynamics.hpp"
+#include "../integrate/prescribed.hpp"
+
+namespace stickslip::identify {
+
+using io::Signal;
+
+std::vector<std::string> PredictSettings::validate() const {
+    std::vector<std::string> v;
+    if (stride < 1) v.push_back("stride = " + std::to_string(stride) + " must be >= 1");
+    if (substeps < 1) v.push_back("substeps = " + std::to_string(substeps) + " must be >= 1");
+    if (warmup_s < 0) v.push_back("warmup must be >= 0 s");
+    if (!(dt_s > 0)) v.push_back("dt must be > 0 s");
+    if (!(segment_s > 0)) v.push_back("segment length must be > 0 s");
+    if (!(segmentSpacing_s >= segment_s)) v.push_back("segment spacing must be >= segment length");
+    if (residualStride < 1) v.push_back("residual stride must be >= 1");
+    return v;
+}
+
+bool runParams(const CleanRun& run, const ModelSpec& spec, SimParams& p, std::string* error) {
+    p = SimParams{};
+    p.law = spec.law;
+    double v = 0;
+    for (const char* key : {"k", "m", "tN", "A", "f", "phase"})
+        if (run.run.setting(key, v)) setParam(p, key, v);
+    double zeta = -1;
+    const bool haveC = run.run.setting("c", v);
+    if (haveC) setParam(p, "c", v);
+    for (const auto& [name, value] : spec.values) {
+        if (name == "zeta") { zeta = value; continue; }
+        if (!setParam(p, name, value, error)) return false;
+    }
+    if (zeta >= 0 && !haveC) p.rig.damping_Ns_per_m = dampingFromRatio(zeta, p.rig.stiffness_N_per_m, p.rig.mass_kg);
+    if (spec.tieC1ToMu && !spec.values.count("C1")) p.rateState.C1 = p.rateState.mu;
+    return true;
+}
+
+Prediction predictPrescribed(const CleanRun& run, const FrictionLaw& law, double tN, const PredictSettings& s) {
+    Prediction pr;
+    const io::Run& r = run.run;
+    if (!r.has(Signal::Slip) || !r.has(Signal::Friction)) {
+        pr.message = r.file + ": the prescribed set-up needs slip (or stage displacement) and friction force";
+        return pr;
+    }
+    const size_t stride = static_cast<size_t>(s.stride);
+    const size_t warm = static_cast<size_t>(std::lround(s.warmup_s / run.dt_s));
+    const size_t first = run.begin > warm ? run.begin - warm : 0;
+    SlipHistory h;
+    std::vector<size_t> idx;
+    for (size_t i = first; i < run.end; i += stride) idx.push_back(i);
+    for (size_t i : idx) {
+        h.t_s.push_back(r[Signal::Time][i]);
+        h.slip_m.push_back(r[Signal::Slip][i]);
+        if (r.has(Signal::RelVel)) h.velocity_mps.push_back(r[Signal::RelVel][i]);
+        if (r.has(Signal::Normal)) h.normalForce_N.push_back(r[Signal::Normal][i]);
+    }
+    LawState init;
+    init.force_N = r[Signal::Friction][first];
+    const RunResult res = simulatePrescribed(law, tN, h, s.substeps, {}, init);
+    if (!res.ok()) {
+        pr.message = r.file + ": " + res.message;
+        return pr;
+    }
+    for (size_t k = 0; k < idx.size(); ++k)
+        if (idx[k] >= run.begin) {
+            pr.index.push_back(idx[k]);
+            pr.force_N.push_back(res.samples[k].force_N);
+        }
+    pr.ok = true;
+    return pr;
+}
+
+Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const FrictionLaw& law, const PredictSettings& s) {
+    Prediction pr;
+    const io::Run& r = run.run;
+    if (!r.has(Signal::StageDisp) || !r.has(Signal::SliderDisp) || !r.has(Signal::Friction) || !r.has(Signal::SliderVel)) {
+        pr.message = r.file + ": the dynamics set-up needs stage and slider displacement and friction force";
+        return pr;
+    }
+    const std::vector<double>& t = r[Signal::Time];
+    DynamicsModel m;
+    m.rig = rig;
+    m.law = law;
+    const long sub = std::max(1L, std::lround(run.dt_s / s.dt_s));
+    m.dt_s = run.dt_s / static_cast<double>(sub);
+    m.stage = StageMotion::tabulated(t, r[Signal::StageDisp]);
+    const size_t segLen = std::max<size_t>(2, static_cast<size_t>(std::lround(s.segment_s / run.dt_s)));
+    const size_t spacing = std::max(segLen, static_cast<size_t>(std::lround(s.segmentSpacing_s / run.dt_s)));
+    const double tN = rig.normalForce_N;
+    for (size_t s0 = run.begin; s0 + segLen < run.end; s0 += spacing) {
+        DynState st;
+        st.t = t[s0];
+        st.x = r[Signal::SliderDisp][s0];
+        st.v = r[Signal::SliderVel][s0];
+        st.u = m.stage.displacement(st.t);
+        st.law.force_N = r[Signal::Friction][s0];
+        // α in steady sliding at the measured slip rate: the law's state is not measured, and
+        // it relaxes within a slip of D_c, i.e. within the first steps of sliding.
+        const double V = r.has(Signal::RelVel) ? r[Signal::RelVel][s0] : 0.0;
+        st.law.alpha = std::holds_alternative<RateStateLaw>(law) ? std::get<RateStateLaw>(law).steadyStateAlpha(V) : 0.0;
+        st.a = (st.law.force_N - rig.stiffness_N_per_m * st.x - rig.damping_Ns_per_m * st.v) / rig.mass_kg;
+        for (size_t j = 1; j <= segLen; ++j) {
+            const StepReport rep = advanceQuiet(m, st, sub);
+            if (rep.status != RunStatus::Ok) {
+                pr.message = r.file + ": " + rep.message;
+                pr.ok = false;
+                return pr;
+            }
+            if (j % static_cast<size_t>(s.residualStride) == 0) {
+                pr.index.push_back(s0 + j);
+                pr.force_N.push_back(st.law.force_N);
+                pr.slider_m.push_back(st.x);
+            }
+        }
+    }
+    if (pr.index.empty()) {
+        pr.message = r.file + ": fit window shorter than one segment";
+        return pr;
+    }
+    pr.ok = true;
+    return pr;
+}
+
+Prediction predictRun(const CleanRun& run, SetupKind setup, const ModelSpec& spec, const PredictSettings& s) {
+    SimParams p;
+    std::string why;
+    if (!runParams(run, spec, p, &why)) {
+        Prediction pr;
+        pr.message = why;
+        return pr;
+    }
+    const FrictionLaw law = makeLaw(p);
+    if (setup == SetupKind::Prescribed) return predictPrescribed(run, law, p.rig.normalForce_N, s);
+    return predictDynamics(run, p.rig, law, s);
+}
+
+}  // namespace stickslip::identify

@@ -1,0 +1,60 @@
+// Predicting measured signals from model parameters, for both set-ups (issue 5):
+//  - prescribed slip (paper Fig. 15a): the measured slip history g(t) drives the law; the
+//    friction force F(t) is predicted.
+//  - dynamics (paper Fig. 15b): the measured stage motion u(t) drives the spring–mass rig;
+//    slider displacement x(t) and friction force F(t) are predicted by multiple shooting:
+//    short segments, each re-initialised from the measured x, ẋ (Savitzky–Golay) and F, so
+//    that the divergence of nearby trajectories (chaos) does not dominate the residual.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "../friction/friction_law.hpp"
+#include "../params.hpp"
+#include "preprocess.hpp"
+
+namespace stickslip::identify {
+
+struct PredictSettings {
+    // prescribed
+    int stride = 4;              // use every stride-th measured sample as a law step boundary (decimation)
+    int substeps = 8;            // law steps per (decimated) sample interval
+    double warmup_s = 0.25;      // simulate this long before the fit window (the law forgets its start)
+    // dynamics
+    double dt_s = 1.0e-4;        // integration step; rounded so that whole steps fill a sample interval
+    double segment_s = 0.05;     // length of one re-initialised segment
+    double segmentSpacing_s = 0.25;  // start-to-start spacing of segments (≥ segment_s)
+    int residualStride = 5;      // samples between residual points inside a segment
+    std::vector<std::string> validate() const;
+};
+
+// One run's prediction at the sample indices `index` (into the CleanRun's signals).
+struct Prediction {
+    bool ok = false;
+    std::string message;
+    std::vector<size_t> index;
+    std::vector<double> force_N;   // predicted F
+    std::vector<double> slider_m;  // predicted x (dynamics only)
+};
+
+// Model parameters by name (keys of setParam: mu C1 eta Dc vc epsT r, rig m c k, and
+// "zeta" = damping ratio, which sets c = 2 ζ sqrt(k m) per run). When tieC1ToMu and C1 is
+// not given, C1 = μ (the paper's choice μ = C1).
+struct ModelSpec {
+    LawKind law = LawKind::RateState;
+    std::map<std::string, double> values;
+    bool tieC1ToMu = true;
+};
+
+// The SimParams of one run: the run's known settings (k, m, c, tN, A, f) then the model's
+// values. False (with a message) when a name is unknown.
+bool runParams(const CleanRun& run, const ModelSpec& spec, SimParams& out, std::string* error);
+
+Prediction predictPrescribed(const CleanRun& run, const FrictionLaw& law, double normalForce_N, const PredictSettings& s);
+Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const FrictionLaw& law, const PredictSettings& s);
+// Dispatch on the set-up using runParams.
+Prediction predictRun(const CleanRun& run, SetupKind setup, const ModelSpec& spec, const PredictSettings& s);
+
+}  // namespace stickslip::identify

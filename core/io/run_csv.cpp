@@ -1,0 +1,119 @@
+#include "run_csv.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "../version.hpp"
+#include "units.hpp"
+
+namespace stickslip::io {
+
+const std::vector<std::string>& runCsvColumns() {
+    static const std::vector<std::string> cols = {"time_s",           "stage_disp_m",   "slider_disp_m",
+                                                  "slider_vel_mps",   "rel_vel_mps",    "friction_force_N",
+                                                  "friction_ratio",   "state_alpha",    "stuck"};
+    return cols;
+}
+
+std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector<std::string>& extraComments) {
+    std::string s;
+    char buf[512];
+    s += std::string("# StickSlip Lab ") + kVersion + " run\n";
+    s += std::string("# version = ") + kVersion + "\n";
+    s += std::string("# model = ") + toString(p.law) + "\n";
+    s += std::string("# setup = ") + toString(p.setup) + "\n";
+    s += std::string("# status = ") + toString(r.status) + "\n";
+    if (!r.message.empty()) {
+        std::string msg = r.message;
+        for (char& c : msg)
+            if (c == '\n' || c == '\r') c = ' ';
+        s += "# message = " + msg + "\n";
+    }
+    for (const std::string& key : paramKeys()) {
+        double v = 0;
+        if (!getParam(p, key, v)) continue;
+        // The Coulomb law keeps its own μ and ε_T; report the ones the run used.
+        if (p.law == LawKind::Coulomb && key == "mu") v = p.coulomb.mu;
+        if (p.law == LawKind::Coulomb && key == "epsT") v = p.coulomb.epsT_N_per_m;
+        std::string unit;
+        paramUnit(key, unit);
+        std::snprintf(buf, sizeof buf, "# %s = %.17g%s%s\n", key.c_str(), v, unit.empty() ? "" : " ", unit.c_str());
+        s += buf;
+    }
+    for (const std::string& c : extraComments) s += "# " + c + "\n";
+    const auto& cols = runCsvColumns();
+    for (size_t j = 0; j < cols.size(); ++j) s += (j ? "," : "") + cols[j];
+    s += '\n';
+    s.reserve(s.size() + r.samples.size() * 150);
+    for (const Sample& x : r.samples) {
+        std::snprintf(buf, sizeof buf, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d\n", x.t_s, x.stage_m,
+                      x.slider_m, x.sliderVel_mps, x.relVel_mps, x.force_N, x.ratio, x.alpha, x.stuck ? 1 : 0);
+        s += buf;
+    }
+    return s;
+}
+
+bool writeRunCsv(const std::string& path, const SimParams& p, const RunResult& r, std::string* error,
+                 const std::vector<std::string>& extraComments) {
+    return writeFileAtomically(path, runCsvText(p, r, extraComments), error);
+}
+
+bool slipHistoryFromTable(const CsvTable& t, SlipHistory& out, CsvError& err) {
+    auto fail = [&](long line, long column, std::string msg) {
+        err = CsvError{t.path, line, column, std::move(msg)};
+        return false;
+    };
+    std::string names;
+    for (const std::string& h : t.header) names += (names.empty() ? "" : ", ") + h;
+    const int it = t.column("time_s");
+    if (it < 0) return fail(t.headerLine, 1, "missing column 'time_s' (columns: " + names + ")");
+    const int ig = t.column("rel_disp_m");
+    const int iu = t.column("stage_disp_m");
+    const int iv = t.column("rel_vel_mps");
+    const int in = t.column("normal_force_N");
+    if (ig < 0 && iu < 0 && iv < 0)
+        return fail(t.headerLine, 1,
+                    "needs one of the columns 'rel_disp_m', 'stage_disp_m' or 'rel_vel_mps' (columns: " + names + ")");
+    if (t.rows() < 2) return fail(t.headerLine, 1, "a slip history needs at least two data rows");
+
+    // Column of the time cell is known exactly only when time is the first column.
+    const long timeColumn = it == 0 ? 1 : 0;
+    const std::vector<double>& time = t.columns[static_cast<size_t>(it)];
+    for (size_t i = 1; i < time.size(); ++i) {
+        if (!(time[i] > time[i - 1])) {
+            char buf[200];
+            std::snprintf(buf, sizeof buf, "time_s must increase: %.10g after %.10g", time[i], time[i - 1]);
+            return fail(t.rowLines[i], timeColumn, buf);
+        }
+    }
+    if (in >= 0) {
+        const std::vector<double>& tn = t.columns[static_cast<size_t>(in)];
+        for (size_t i = 0; i < tn.size(); ++i)
+            if (!(tn[i] > 0.0)) {
+                char buf[200];
+                std::snprintf(buf, sizeof buf, "normal_force_N must be > 0, is %.10g", tn[i]);
+                return fail(t.rowLines[i], 0, buf);
+            }
+    }
+
+    SlipHistory h;
+    if (ig >= 0 || iu >= 0) {
+        h = SlipHistory::fromSlip(time, t.columns[static_cast<size_t>(ig >= 0 ? ig : iu)]);
+        if (iv >= 0) h.velocity_mps = t.columns[static_cast<size_t>(iv)];
+    } else {
+        h = SlipHistory::fromVelocity(time, t.columns[static_cast<size_t>(iv)], 0.0);
+    }
+    if (in >= 0) h.normalForce_N = t.columns[static_cast<size_t>(in)];
+    const std::string problem = h.check();
+    if (!problem.empty()) return fail(0, 0, problem);
+    out = std::move(h);
+    return true;
+}
+
+bool readSlipHistoryCsv(const std::string& path, SlipHistory& out, CsvError& err) {
+    CsvTable t;
+    if (!readCsvTable(path, t, err)) return false;
+    return slipHistoryFromTable(t, out, err);
+}
+
+}  // namespace stickslip::io

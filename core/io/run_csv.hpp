@@ -1,0 +1,34 @@
+// Runs as CSV files: the output of a simulation, and prescribed-slip histories as input.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "../integrate/prescribed.hpp"
+#include "../integrate/run_result.hpp"
+#include "../params.hpp"
+#include "csv_table.hpp"
+
+namespace stickslip::io {
+
+// Column names of a run file, in order.
+const std::vector<std::string>& runCsvColumns();
+
+// The full text of a run file: '#' lines with the program version, model, set-up, status
+// and every parameter ("# A = 0.001 m"), any `extraComments` (one '#' line each), then
+// the header time_s,stage_disp_m,slider_disp_m,slider_vel_mps,rel_vel_mps,
+// friction_force_N,friction_ratio,state_alpha,stuck and one row per sample (%.10g).
+std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector<std::string>& extraComments = {});
+// runCsvText written atomically ("-" = stdout).
+bool writeRunCsv(const std::string& path, const SimParams& p, const RunResult& r, std::string* error,
+                 const std::vector<std::string>& extraComments = {});
+
+// A prescribed-slip history from a table, by header name: `time_s` and one of
+// `rel_disp_m` (g), `stage_disp_m` (slider held fixed, so g = u) or `rel_vel_mps` (V,
+// integrated from g = 0), in that order of preference; `rel_vel_mps` is also kept as the
+// velocity when a displacement column is used; `normal_force_N` (optional) gives t_N per
+// sample. Errors name the file and line (and column where known).
+bool slipHistoryFromTable(const CsvTable& t, SlipHistory& out, CsvError& err);
+bool readSlipHistoryCsv(const std::string& path, SlipHistory& out, CsvError& err);
+
+}  // namespace stickslip::io

@@ -1,0 +1,357 @@
+// Verification of the spring–mass dynamics (paper Fig. 15b, Eq. 8): the Coulomb permanent-stick
+// closed form, agreement of the two couplings, run bookkeeping, cancellation and failure.
+#include <QtTest>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <thread>
+
+#include "core/integrate/dynamics.hpp"
+#include "core/integrate/simulate.hpp"
+#include "core/integrate/stage_motion.hpp"
+#include "physics_helpers.hpp"
+
+using namespace stickslip;
+using namespace stickslip::testing;
+
+namespace {
+
+// The forced response of the stuck series system, started on it (no free vibration):
+// while stuck F = ε_T (u − x) (F_0 = 0 at u = x = 0), so m ẍ + k x = ε_T (A sin ωt − x) and
+//   x(t) = X sin ωt,  X = ε_T A / (k + ε_T − m ω²),
+//   F(t) = ε_T (A − X) sin ωt,  |F|max = A ε_T (k − m ω²)/(k + ε_T − m ω²)  (in absolute value).
+// Starting from rest instead would add a free vibration at sqrt((k+ε_T)/m) whose force
+// amplitude exceeds the forced one, so we start on the forced solution: x = 0, v = X ω, a = 0.
+struct StuckResponse {
+    double X;     // slider amplitude [m]
+    double Famp;  // force amplitude [N]
+};
+StuckResponse stuckResponse(const SimParams& p) {
+    const double w = p.drive.omega(), k = p.rig.stiffness_N_per_m, m = p.rig.mass_kg, eps = p.coulomb.epsT_N_per_m;
+    const double A = p.drive.amplitude_m;
+    const double X = eps * A / (k + eps - m * w * w);
+    return {X, std::abs(eps * (A - X))};
+}
+// Stage amplitude at which the stuck force amplitude reaches μ t_N.
+double stickThreshold(const SimParams& p) {
+    const double w = p.drive.omega(), k = p.rig.stiffness_N_per_m, m = p.rig.mass_kg, eps = p.coulomb.epsT_N_per_m;
+    return p.coulomb.mu * p.rig.normalForce_N * std::abs(k + eps - m * w * w) / (eps * std::abs(k - m * w * w));
+}
+
+}  // namespace
+
+class TstDynamics : public QObject {
+    Q_OBJECT
+private slots:
+    // Coulomb permanent stick: with A |k − m ω²| < μ t_N (undamped) the stuck force amplitude
+    // A ε_T|k − mω²|/(k + ε_T − mω²) stays below μ t_N, so the slider follows the stage up to the
+    // ε_T pre-slip: every step sticks and x is the closed-form forced response above. Just above
+    // the threshold the same start slips.
+    // Tolerance on x: 2e-4 X. Newmark (trapezoidal) has no amplitude error for undamped linear
+    // systems and a relative period error (ωh)²/12: 3e-8 at the forcing frequency, i.e. ~4e-6
+    // phase over 20 cycles; the start is the continuous (not the discrete) forced solution, which
+    // excites the stuck mode Ω = sqrt((k+ε_T)/m) with a relative amplitude O((Ωh)²/12) ≈ 2e-4
+    // (Ωh = 0.046 at dt = T/10 000).
+    void coulombPermanentStick_data() {
+        QTest::addColumn<double>("k");
+        QTest::addColumn<double>("fraction");  // A / A_threshold
+        QTest::addColumn<bool>("expectStick");
+        QTest::addRow("k=8446 A=0.95 Ac") << 8446.0 << 0.95 << true;
+        QTest::addRow("k=8446 A=1.05 Ac") << 8446.0 << 1.05 << false;
+        QTest::addRow("k=8446 A=0.5 Ac") << 8446.0 << 0.5 << true;
+        QTest::addRow("k=100 (k < m w^2) A=0.95 Ac") << 100.0 << 0.95 << true;
+        QTest::addRow("k=100 (k < m w^2) A=1.05 Ac") << 100.0 << 1.05 << false;
+    }
+    void coulombPermanentStick() {
+        QFETCH(double, k);
+        QFETCH(double, fraction);
+        QFETCH(bool, expectStick);
+        SimParams p = fig20Params();
+        p.law = LawKind::Coulomb;
+        p.rig.stiffness_N_per_m = k;
+        p.rig.damping_Ns_per_m = 0.0;
+        const double w = p.drive.omega();
+        const double muTN = p.coulomb.mu * p.rig.normalForce_N;
+        // The criterion A |k − mω²| < μ t_N implies stick; our threshold is that with the
+        // series factor ε_T/(k + ε_T − mω²) (≈ 1 + 1e-3 here).
+        const double Ac = stickThreshold(p);
+        QVERIFY(Ac >= muTN / std::abs(k - p.rig.mass_kg * w * w));
+        p.drive.amplitude_m = fraction * Ac;
+        const StuckResponse ref = stuckResponse(p);
+
+        const DynamicsModel model = DynamicsModel::fromParams(p);
+        DynState s = model.initialState(0.0);
+        s.v = ref.X * w;
+        const long steps = std::lround(20 * p.drive.period() / p.integration.dt_s);
+        long stuckSteps = 0;
+        double maxF = 0, maxErrX = 0, maxErrF = 0;
+        auto obs = [&](const DynState& st) {
+            stuckSteps += st.stuck ? 1 : 0;
+            maxF = std::max(maxF, std::abs(st.law.force_N));
+            maxErrX = std::max(maxErrX, std::abs(st.x - ref.X * std::sin(w * st.t)));
+            // Pre-slip: the force is the ε_T spring stretched by the slip u − x.
+            if (st.stuck) maxErrF = std::max(maxErrF, std::abs(st.law.force_N - p.coulomb.epsT_N_per_m * (st.u - st.x)));
+        };
+        const StepReport rep = advance(model, s, steps, obs);
+        QCOMPARE(rep.status, RunStatus::Ok);
+        QCOMPARE(rep.stepsDone, steps);
+        qInfo("A = %.4g mm (%.2f A_c), %ld of %ld steps stuck, max|F| = %.6g N (mu tN = %.6g), max|x - X sin wt| = %.3g X",
+              p.drive.amplitude_m * 1e3, fraction, stuckSteps, steps, maxF, muTN, maxErrX / ref.X);
+        if (expectStick) {
+            QCOMPARE(stuckSteps, steps);
+            QVERIFY(maxF < muTN);
+            QVERIFY(std::abs(maxF - ref.Famp) < 1e-3 * ref.Famp);
+            QVERIFY2(maxErrX < 2e-4 * ref.X, qPrintable(QString("x error %1 of X").arg(maxErrX / ref.X)));
+            // Up to round-off in the accumulated F_{n+1} = F_n + ε Δg.
+            QVERIFY(maxErrF < 1e-9 * muTN * steps);
+        } else {
+            QVERIFY(stuckSteps < steps);
+            QVERIFY(std::abs(maxF - muTN) < 1e-12 * muTN);  // Coulomb: slipping at exactly μ t_N
+        }
+    }
+
+    // The two couplings of the slider to the law (condensed scalar return map vs monolithic
+    // Newton with the consistent tangent) solve the same discrete equations, so they agree to
+    // the solvers' tolerances. The Fig. 20 set at A = 1 mm is period-1 (MODEL.md), so nothing
+    // amplifies differences exponentially; 1e-6 of the amplitude over 5 cycles covers the local
+    // solve's 1e-7 relative stopping rule.
+    void couplingsAgree_data() {
+        QTest::addColumn<bool>("coulomb");
+        QTest::addRow("rate-state") << false;
+        QTest::addRow("coulomb") << true;
+    }
+    void couplingsAgree() {
+        QFETCH(bool, coulomb);
+        SimParams p = fig20Params();
+        p.law = coulomb ? LawKind::Coulomb : LawKind::RateState;
+        DynamicsModel a = DynamicsModel::fromParams(p), b = a;
+        a.coupling = Coupling::Condensed;
+        b.coupling = Coupling::Newton;
+        DynState sa = a.initialState(), sb = b.initialState();
+        const long steps = 5 * 10000;
+        const RunResult ra = simulateDynamics(a, sa, steps, 100, true);
+        const RunResult rb = simulateDynamics(b, sb, steps, 100, true);
+        QVERIFY(ra.ok() && rb.ok());
+        QCOMPARE(ra.samples.size(), rb.samples.size());
+        double errX = 0, errF = 0, ampX = 0;
+        long slipping = 0;
+        for (size_t i = 0; i < ra.samples.size(); ++i) {
+            errX = std::max(errX, std::abs(ra.samples[i].slider_m - rb.samples[i].slider_m));
+            errF = std::max(errF, std::abs(ra.samples[i].force_N - rb.samples[i].force_N));
+            ampX = std::max(ampX, std::abs(rb.samples[i].slider_m));
+            slipping += ra.samples[i].stuck ? 0 : 1;
+        }
+        qInfo("condensed vs Newton: max|dx| = %.3g of amplitude, max|dF| = %.3g N", errX / ampX, errF);
+        QVERIFY(slipping > 0);
+        QVERIFY(errX <= 1e-6 * ampX);
+        QVERIFY(errF <= 1e-6 * p.rig.normalForce_N);
+    }
+
+    // Bookkeeping of a run from SimParams: transient discarded, `cycles` recorded at the output
+    // interval, the first sample at the end of the transient, equal spacing, finite values.
+    void runBookkeeping() {
+        SimParams p = fig20Params();
+        p.transientCycles = 2;
+        p.cycles = 3;
+        const RunResult r = simulateDynamics(p);
+        QVERIFY2(r.ok(), r.message.c_str());
+        QCOMPARE(r.samples.size(), size_t(3 * 100 + 1));
+        QCOMPARE(r.stats.steps, 3L * 10000);
+        const double T = p.drive.period();
+        QVERIFY(std::abs(r.samples.front().t_s - 2 * T) < 1e-9);
+        QVERIFY(std::abs(r.samples.back().t_s - 5 * T) < 1e-9);
+        for (size_t i = 1; i < r.samples.size(); ++i)
+            QVERIFY(std::abs(r.samples[i].t_s - r.samples[i - 1].t_s - T / 100) < 1e-9);
+        QVERIFY(allFinite(r.samples));
+        const DynamicsModel m = DynamicsModel::fromParams(p);
+        for (const Sample& s : r.samples) {
+            // u is the prescribed stage motion; V = u̇ − ẋ; ratio = F/t_N.
+            QVERIFY(std::abs(s.stage_m - p.drive.amplitude_m * std::sin(p.drive.omega() * s.t_s)) < 1e-12);
+            QVERIFY(std::abs(s.relVel_mps - (m.stage.velocity(s.t_s) - s.sliderVel_mps)) < 1e-12);
+            QVERIFY(std::abs(s.ratio - s.force_N / p.rig.normalForce_N) < 1e-15);
+            if (s.stuck) QCOMPARE(s.slipRate_mps, 0.0);
+        }
+        // Through the generic entry point too.
+        const RunResult r2 = simulate(p);
+        QVERIFY(r2.ok());
+        QCOMPARE(r2.samples.size(), r.samples.size());
+        QCOMPARE(r2.samples.back().slider_m, r.samples.back().slider_m);
+    }
+
+    // advance() is deterministic and splitting it into pieces changes nothing; advanceQuiet()
+    // takes the same steps; the observer sees every step.
+    void advanceIsDeterministic() {
+        const DynamicsModel m = DynamicsModel::fromParams(fig20Params());
+        DynState a = m.initialState(), b = m.initialState(), c = m.initialState();
+        long seen = 0;
+        const StepReport ra = advance(m, a, 30000, [&](const DynState&) { ++seen; });
+        QCOMPARE(seen, 30000L);
+        QCOMPARE(ra.stepsDone, 30000L);
+        advanceQuiet(m, b, 12345);
+        advanceQuiet(m, b, 30000 - 12345);
+        advanceQuiet(m, c, 30000);
+        QCOMPARE(a.x, c.x);
+        QCOMPARE(a.law.force_N, c.law.force_N);
+        // Pieces restart the stage sequence at the current time: equal up to the stage round-off.
+        QVERIFY(std::abs(a.x - b.x) < 1e-12);
+        QVERIFY(std::abs(a.t - 1.0) < 1e-12);
+        QVERIFY(ra.stuckSteps > 0 && ra.stuckSteps < 30000);
+    }
+
+    // Cancel from another thread: the run returns Cancelled with the samples so far (finite,
+    // equally spaced), fewer than the full run; progress was reported in (0, 1].
+    void cancelFromAnotherThread_data() {
+        QTest::addColumn<bool>("prescribed");
+        QTest::addRow("dynamics") << false;
+        QTest::addRow("prescribed") << true;
+    }
+    void cancelFromAnotherThread() {
+        QFETCH(bool, prescribed);
+        SimParams p = fig20Params();
+        p.setup = prescribed ? SetupKind::Prescribed : SetupKind::Dynamics;
+        p.cycles = 1e5;  // minutes of work: only the cancel can end it in time
+        std::atomic<bool> cancel{false};
+        double lastProgress = 0;
+        bool progressOk = true;
+        RunControl ctl;
+        ctl.cancel = &cancel;
+        ctl.progress = [&](double f) {
+            progressOk = progressOk && f >= lastProgress && f > 0 && f <= 1;
+            lastProgress = f;
+        };
+        std::thread canceller([&] {
+            std::this_thread::sleep_for(std::chrono::milliseconds(200));
+            cancel.store(true);
+        });
+        const RunResult r = simulate(p, ctl);
+        canceller.join();
+        QCOMPARE(r.status, RunStatus::Cancelled);
+        QVERIFY(!r.message.empty());
+        QVERIFY(!r.samples.empty());
+        QVERIFY(r.samples.size() < size_t(1e5 * 100));
+        QVERIFY(allFinite(r.samples));
+        const double dtOut = p.drive.period() / 100;
+        for (size_t i = 1; i < r.samples.size(); ++i)
+            QVERIFY(std::abs(r.samples[i].t_s - r.samples[i - 1].t_s - dtOut) < 1e-9);
+        QVERIFY(progressOk);
+        qInfo("cancelled after %zu samples (%.1f cycles), progress %.3g", r.samples.size(),
+              r.samples.back().t_s / p.drive.period(), lastProgress);
+    }
+
+    // A forced numerical failure (a non-finite or absurd value bypassing validation) ends the run
+    // with Failed and a message naming the step, the time and the quantity; the samples so far
+    // contain no NaN.
+    void failureIsAStatus_data() {
+        QTest::addColumn<QString>("what");
+        QTest::addRow("mass NaN") << "m";
+        QTest::addRow("epsT inf") << "epsT";
+        QTest::addRow("Dc zero") << "Dc";
+        QTest::addRow("tN NaN") << "tN";
+        QTest::addRow("dt zero") << "dt";
+        QTest::addRow("stage NaN after a while") << "stage";
+    }
+    void failureIsAStatus() {
+        QFETCH(QString, what);
+        SimParams p = fig20Params();
+        DynamicsModel m = DynamicsModel::fromParams(p);
+        RateStateParams rp = p.rateState;
+        if (what == "m") m.rig.mass_kg = std::nan("");
+        if (what == "tN") m.rig.normalForce_N = std::nan("");
+        if (what == "epsT") rp.epsT_N_per_m = std::numeric_limits<double>::infinity();
+        if (what == "Dc") rp.Dc_m = 0.0;
+        if (what == "dt") m.dt_s = 0.0;
+        m.law = RateStateLaw{rp};
+        if (what == "stage") {
+            // A measured stage table that turns NaN at t = 0.1 s.
+            std::vector<double> t, u;
+            for (int i = 0; i <= 1000; ++i) {
+                t.push_back(i * 1e-3);
+                u.push_back(i < 100 ? 1e-3 * std::sin(20.0 * i * 1e-3) : std::nan(""));
+            }
+            m.stage = StageMotion::tabulated(t, u);
+        }
+        DynState s = m.initialState(0.0);
+        const RunResult r = simulateDynamics(m, s, 30000, 10, true);
+        QCOMPARE(r.status, RunStatus::Failed);
+        qInfo("%s: %s", qPrintable(what), r.message.c_str());
+        QVERIFY2(contains(r.message, "step "), r.message.c_str());
+        QVERIFY2(contains(r.message, "t = "), r.message.c_str());
+        // The quantity, named in parentheses: (x), (F) or (slip increment).
+        QVERIFY2(contains(r.message, "(x)") || contains(r.message, "(F)") || contains(r.message, "(slip increment)"),
+                 r.message.c_str());
+        QVERIFY(allFinite(r.samples));
+        if (what == "stage") {
+            QVERIFY(r.samples.size() > 5);  // it ran until the stage went bad
+            QVERIFY(contains(r.message, "step 100 ") || contains(r.message, "step 99 ") ||
+                    contains(r.message, "step 101 "));
+        }
+    }
+
+    // Failure messages number steps from stepOffset.
+    void failureStepNumbering() {
+        DynamicsModel m = DynamicsModel::fromParams(fig20Params());
+        m.rig.mass_kg = std::nan("");
+        DynState s = m.initialState();
+        const StepReport rep = advanceQuiet(m, s, 10, {});
+        QCOMPARE(rep.status, RunStatus::Failed);
+        QCOMPARE(rep.stepsDone, 0L);
+        DynState s2 = m.initialState();
+        const StepReport rep2 = advance(m, s2, 10, [](const DynState&) {}, {}, 1000);
+        QVERIFY2(contains(rep2.message, "step 1001 "), rep2.message.c_str());
+        QCOMPARE(std::string(toString(RunStatus::Failed)), std::string("failed"));
+        QCOMPARE(std::string(toString(RunStatus::Cancelled)), std::string("cancelled"));
+        QCOMPARE(std::string(toString(RunStatus::Ok)), std::string("ok"));
+    }
+
+    // The stage: u = A sin(ωt + φ) and its derivative; a table interpolates linearly and holds
+    // its end values; a bad table is refused.
+    void stageMotion() {
+        DriveParams d;
+        d.amplitude_m = 2e-3;
+        d.frequency_Hz = 5;
+        d.phase_rad = 0.3;
+        const StageMotion h = StageMotion::harmonic(d);
+        QVERIFY(h.isHarmonic());
+        for (double t : {0.0, 0.013, 0.1, 1.7}) {
+            QVERIFY(std::abs(h.displacement(t) - 2e-3 * std::sin(d.omega() * t + 0.3)) < 1e-15);
+            QVERIFY(std::abs(h.velocity(t) - 2e-3 * d.omega() * std::cos(d.omega() * t + 0.3)) < 1e-13);
+        }
+        const StageMotion tab = StageMotion::tabulated({0.0, 1.0, 3.0}, {0.0, 2.0, -2.0});
+        QVERIFY(!tab.isHarmonic());
+        QCOMPARE(tab.displacement(0.5), 1.0);
+        QCOMPARE(tab.displacement(2.0), 0.0);
+        QCOMPARE(tab.displacement(-1.0), 0.0);
+        QCOMPARE(tab.displacement(5.0), -2.0);
+        QCOMPARE(tab.velocity(0.5), 2.0);
+        QCOMPARE(tab.velocity(2.5), -2.0);
+        QVERIFY_EXCEPTION_THROWN(StageMotion::tabulated({0.0, 0.0}, {1.0, 2.0}), std::invalid_argument);
+        QVERIFY_EXCEPTION_THROWN(StageMotion::tabulated({0.0}, {1.0}), std::invalid_argument);
+    }
+
+    // The model's constructors: fromParams copies the rig, the law and the step; initialState
+    // is at rest with u = u(t).
+    void modelFromParams() {
+        SimParams p = fig20Params();
+        p.law = LawKind::Coulomb;
+        p.drive.phase_rad = 0.5;
+        const DynamicsModel m = DynamicsModel::fromParams(p);
+        QCOMPARE(m.dt_s, p.integration.dt_s);
+        QCOMPARE(m.rig.stiffness_N_per_m, p.rig.stiffness_N_per_m);
+        QVERIFY(std::holds_alternative<CoulombLaw>(m.law));
+        const DynState s = m.initialState(0.25);
+        QCOMPARE(s.t, 0.25);
+        QCOMPARE(s.u, p.drive.amplitude_m * std::sin(p.drive.omega() * 0.25 + 0.5));
+        QCOMPARE(s.x, 0.0);
+        QCOMPARE(s.v, 0.0);
+        QCOMPARE(s.law.force_N, 0.0);
+        const Sample o = toSample(m, s);
+        QCOMPARE(o.stage_m, s.u);
+        QCOMPARE(o.relVel_mps, m.stage.velocity(0.25));
+    }
+};
+
+QTEST_GUILESS_MAIN(TstDynamics)
+#include "tst_dynamics.moc"

@@ -1,0 +1,30 @@
+// Export of a QwtPlot as an image/document (PNG, SVG, PDF chosen by extension, rendered with
+// QwtPlotRenderer) and of the plotted data as CSV. Every file is written atomically
+// (QSaveFile: a temp file renamed over the target on commit); on failure the target is left
+// as it was and `error` says why.
+#pragma once
+
+#include <QSize>
+#include <QString>
+
+class QwtPlot;
+
+namespace stickslip::widgets {
+
+struct ExportOptions {
+    QSizeF size_mm{160.0, 100.0};   // document size [mm]
+    int resolution_dpi = 110;       // raster resolution for PNG [dots per inch]
+};
+
+// .png, .svg or .pdf (case-insensitive); anything else is an error.
+bool exportPlot(const QwtPlot* plot, const QString& path, QString* error = nullptr,
+                const ExportOptions& options = {});
+
+// CSV of every curve (and spectrogram grid) attached to the plot, in display units:
+//   # <plot title>
+//   series,<x axis title>,<y axis title>
+//   <curve title>,x,y
+// (spectrograms: series,x,y,value rows). Values printed with 17 significant digits.
+bool exportCsv(const QwtPlot* plot, const QString& path, QString* error = nullptr);
+
+}  // namespace stickslip::widgets

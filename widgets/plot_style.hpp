@@ -1,0 +1,29 @@
+// The common look of all plots: colours per model, branch and orientation (internal header).
+#pragma once
+
+#include <QColor>
+#include <QPen>
+
+#include "core/params.hpp"
+
+namespace stickslip::widgets::style {
+
+inline QColor rateState() { return QColor(31, 119, 180); }   // blue
+inline QColor coulomb() { return QColor(255, 127, 14); }     // orange
+inline QColor measured() { return QColor(30, 30, 30); }
+inline QColor clockwise() { return QColor(31, 119, 180); }
+inline QColor counterClockwise() { return QColor(214, 39, 40); }
+inline QColor branchUp() { return QColor(31, 119, 180); }
+inline QColor branchDown() { return QColor(214, 39, 40); }
+inline QColor modelColor(LawKind law) { return law == LawKind::Coulomb ? coulomb() : rateState(); }
+inline Qt::PenStyle modelPenStyle(LawKind law) { return law == LawKind::Coulomb ? Qt::DashLine : Qt::SolidLine; }
+inline int slot(LawKind law) { return law == LawKind::Coulomb ? 1 : 0; }
+
+// Channel colours for the time series (stage, slider, F/t_N, V, α).
+inline QColor channelColor(int index) {
+    static const QColor c[] = {QColor(127, 127, 127), QColor(31, 119, 180), QColor(214, 39, 40),
+                               QColor(44, 160, 44), QColor(148, 103, 189)};
+    return c[index % 5];
+}
+
+}  // namespace stickslip::widgets::style

@@ -1,0 +1,175 @@
+#include "plot_widget.hpp"
+
+#include <qwt_legend.h>
+#include <qwt_picker_machine.h>
+#include <qwt_plot.h>
+#include <qwt_plot_canvas.h>
+#include <qwt_plot_curve.h>
+#include <qwt_plot_grid.h>
+#include <qwt_plot_panner.h>
+#include <qwt_plot_picker.h>
+#include <qwt_plot_zoomer.h>
+#include <qwt_symbol.h>
+
+#include <QFileInfo>
+#include <QVBoxLayout>
+
+#include "core/io/csv_table.hpp"
+#include "plot_export.hpp"
+#include "plot_style.hpp"
+
+namespace stickslip::widgets {
+
+bool measuredFromTable(const io::CsvTable& table, const std::string& xColumn, const std::string& yColumn,
+                       MeasuredSeries& out, QString* error) {
+    const int ix = table.column(xColumn);
+    const int iy = table.column(yColumn);
+    for (const auto& [name, idx] : {std::pair{xColumn, ix}, std::pair{yColumn, iy}}) {
+        if (idx < 0) {
+            if (error) {
+                *error = QStringLiteral("%1: no column named \"%2\"")
+                             .arg(QString::fromStdString(table.path), QString::fromStdString(name));
+            }
+            return false;
+        }
+    }
+    out.label = QStringLiteral("measured: %1").arg(QString::fromStdString(yColumn));
+    out.x = table.columns[static_cast<size_t>(ix)];
+    out.y = table.columns[static_cast<size_t>(iy)];
+    return true;
+}
+
+QString modelLabel(LawKind law) {
+    return law == LawKind::Coulomb ? QStringLiteral("Coulomb") : QStringLiteral("rate-state");
+}
+
+namespace {
+
+// Zoomer whose rubber band is the only thing it draws (the picker does the read-out).
+class Zoomer : public QwtPlotZoomer {
+public:
+    explicit Zoomer(QWidget* canvas) : QwtPlotZoomer(canvas) {
+        setTrackerMode(QwtPicker::AlwaysOff);
+        setRubberBandPen(QPen(QColor(80, 80, 80), 1, Qt::DashLine));
+    }
+};
+
+}  // namespace
+
+PlotWidget::PlotWidget(QWidget* parent) : QWidget(parent) {
+    plot_ = new QwtPlot(this);
+    plot_->setCanvasBackground(Qt::white);
+    plot_->setAutoReplot(false);
+    if (auto* canvas = qobject_cast<QwtPlotCanvas*>(plot_->canvas())) {
+        canvas->setFrameStyle(QFrame::Box | QFrame::Plain);
+        canvas->setLineWidth(1);
+        canvas->setPalette(QPalette(Qt::white));
+    }
+    grid_ = new QwtPlotGrid;
+    grid_->setMajorPen(QPen(QColor(220, 220, 220), 0, Qt::DotLine));
+    grid_->attach(plot_);
+
+    auto* legend = new QwtLegend;
+    plot_->insertLegend(legend, QwtPlot::BottomLegend);
+
+    zoomer_ = new Zoomer(plot_->canvas());
+    panner_ = new QwtPlotPanner(plot_->canvas());
+    panner_->setMouseButton(Qt::MiddleButton);
+    picker_ = new QwtPlotPicker(QwtPlot::xBottom, QwtPlot::yLeft, QwtPicker::CrossRubberBand,
+                                QwtPicker::AlwaysOn, plot_->canvas());
+    picker_->setStateMachine(new QwtPickerTrackerMachine);
+    picker_->setRubberBandPen(QPen(QColor(120, 120, 120), 1, Qt::DotLine));
+    picker_->setTrackerPen(QPen(Qt::black));
+
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->addWidget(plot_);
+}
+
+PlotWidget::~PlotWidget() = default;
+
+void PlotWidget::setAxisTitles(const QString& xTitle, const QString& yTitle) {
+    plot_->setAxisTitle(QwtPlot::xBottom, xTitle);
+    plot_->setAxisTitle(QwtPlot::yLeft, yTitle);
+}
+
+QwtPlotCurve* PlotWidget::addCurve(const QString& title, const QPen& pen, int yAxis) {
+    auto* c = new QwtPlotCurve(title);
+    c->setPen(pen);
+    c->setRenderHint(QwtPlotItem::RenderAntialiased, true);
+    c->setPaintAttribute(QwtPlotCurve::FilterPoints, true);
+    c->setYAxis(yAxis);
+    c->attach(plot_);
+    return c;
+}
+
+QwtPlotCurve* PlotWidget::addCurve(const QString& title, LawKind law, const QColor& color, int yAxis) {
+    return addCurve(title, QPen(color, 1.3, style::modelPenStyle(law)), yAxis);
+}
+
+void PlotWidget::addMeasured(const MeasuredSeries& series) {
+    auto* c = addCurve(series.label.isEmpty() ? QStringLiteral("measured") : series.label,
+                       QPen(style::measured(), 0.8));
+    c->setStyle(QwtPlotCurve::Dots);
+    c->setSymbol(new QwtSymbol(QwtSymbol::Ellipse, QBrush(style::measured()), QPen(style::measured()), QSize(3, 3)));
+    QVector<QPointF> pts;
+    const size_t n = std::min(series.x.size(), series.y.size());
+    pts.reserve(static_cast<int>(n));
+    for (size_t i = 0; i < n; ++i) pts.append(QPointF(series.x[i] * xFactor_, series.y[i] * yFactor_));
+    c->setSamples(pts);
+    c->setZ(30);
+    rescale();
+}
+
+void PlotWidget::removeCurvesWithPrefix(const QString& prefix) {
+    const auto items = plot_->itemList(QwtPlotItem::Rtti_PlotCurve);
+    for (auto* item : items) {
+        if (item->title().text().startsWith(prefix)) {
+            item->detach();
+            delete item;
+        }
+    }
+}
+
+void PlotWidget::clearMeasured() {
+    removeCurvesWithPrefix(QStringLiteral("measured"));
+    rescale();
+}
+
+void PlotWidget::clearModel(LawKind law) {
+    removeCurvesWithPrefix(modelLabel(law) + QLatin1Char(':'));
+    rescale();
+}
+
+void PlotWidget::clearAll() {
+    plot_->detachItems(QwtPlotItem::Rtti_PlotCurve, true);
+    rescale();
+}
+
+QList<QwtPlotCurve*> PlotWidget::curves() const {
+    QList<QwtPlotCurve*> out;
+    for (auto* item : plot_->itemList(QwtPlotItem::Rtti_PlotCurve)) out.append(static_cast<QwtPlotCurve*>(item));
+    return out;
+}
+
+QwtPlotCurve* PlotWidget::curve(const QString& title) const {
+    for (auto* c : curves()) {
+        if (c->title().text() == title) return c;
+    }
+    return nullptr;
+}
+
+bool PlotWidget::exportTo(const QString& path, QString* error) const {
+    if (QFileInfo(path).suffix().compare(QLatin1String("csv"), Qt::CaseInsensitive) == 0) {
+        return exportCsv(plot_, path, error);
+    }
+    return exportPlot(plot_, path, error);
+}
+
+void PlotWidget::rescale() {
+    for (int axis = 0; axis < QwtPlot::axisCnt; ++axis) plot_->setAxisAutoScale(axis, true);
+    plot_->replot();
+    zoomer_->setZoomBase(false);
+}
+
+}  // namespace stickslip::widgets

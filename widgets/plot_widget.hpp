@@ -1,0 +1,98 @@
+// Base of every plot view: a QWidget wrapping one QwtPlot with a consistent look, zoom
+// (QwtPlotZoomer: drag a rectangle; right click zooms out), pan (middle button drag) and a
+// crosshair read-out (QwtPlotPicker). Up to two models are overlaid (rate-state solid,
+// Coulomb dashed) plus measured series. Widgets only display value types handed to them.
+#pragma once
+
+#include <QList>
+#include <QPointF>
+#include <QString>
+#include <QVector>
+#include <QWidget>
+#include <vector>
+
+#include "core/params.hpp"
+
+class QwtPlot;
+class QwtPlotCurve;
+class QwtPlotZoomer;
+class QwtPlotPanner;
+class QwtPlotPicker;
+class QwtPlotGrid;
+
+namespace stickslip::io {
+struct CsvTable;
+}
+
+namespace stickslip::widgets {
+
+// A measured series to overlay, in SI units (the plot scales it like its own axes).
+struct MeasuredSeries {
+    QString label;             // legend text, e.g. "measured: x_m"
+    std::vector<double> x;     // SI
+    std::vector<double> y;     // SI
+};
+
+// Picks columns `xColumn` and `yColumn` (names as in the CSV header, as the CLI reads them)
+// from a table. Returns false and a message naming the missing column and file.
+bool measuredFromTable(const io::CsvTable& table, const std::string& xColumn, const std::string& yColumn,
+                       MeasuredSeries& out, QString* error = nullptr);
+
+// "rate-state" / "Coulomb": the legend prefix used for curves of each model.
+QString modelLabel(LawKind law);
+
+class PlotWidget : public QWidget {
+    Q_OBJECT
+public:
+    explicit PlotWidget(QWidget* parent = nullptr);
+    ~PlotWidget() override;
+
+    QwtPlot* plot() const { return plot_; }
+    QwtPlotZoomer* zoomer() const { return zoomer_; }
+    QwtPlotPanner* panner() const { return panner_; }
+    QwtPlotPicker* picker() const { return picker_; }
+
+    // Measured overlays (black markers), on the primary axes (xBottom, yLeft).
+    void addMeasured(const MeasuredSeries& series);
+    void clearMeasured();
+
+    // Removes the curves of one model / everything.
+    virtual void clearModel(LawKind law);
+    virtual void clearAll();
+
+    // All curves currently attached, and the one with this exact title (nullptr if none).
+    QList<QwtPlotCurve*> curves() const;
+    QwtPlotCurve* curve(const QString& title) const;
+
+    // Export by extension: .png .svg .pdf (the plot) or .csv (its data); atomic write.
+    bool exportTo(const QString& path, QString* error = nullptr) const;
+
+    // Display scale of the primary axes: value shown = SI value * factor (e.g. 1e3 for mm).
+    double xFactor() const { return xFactor_; }
+    double yFactor() const { return yFactor_; }
+
+public slots:
+    // Autoscale to the data and make that the zoom base.
+    void rescale();
+
+protected:
+    // A curve of `law` (pen style by model) in `color`, attached on axis `yAxis`.
+    QwtPlotCurve* addCurve(const QString& title, LawKind law, const QColor& color, int yAxis = 2 /*yLeft*/);
+    QwtPlotCurve* addCurve(const QString& title, const QPen& pen, int yAxis = 2 /*yLeft*/);
+    void setAxisTitles(const QString& xTitle, const QString& yTitle);
+    void setFactors(double xFactor, double yFactor) {
+        xFactor_ = xFactor;
+        yFactor_ = yFactor;
+    }
+    void removeCurvesWithPrefix(const QString& prefix);
+
+    QwtPlot* plot_ = nullptr;
+    QwtPlotZoomer* zoomer_ = nullptr;
+    QwtPlotPanner* panner_ = nullptr;
+    QwtPlotPicker* picker_ = nullptr;
+    QwtPlotGrid* grid_ = nullptr;
+    double xFactor_ = 1.0;
+    double yFactor_ = 1.0;
+};
+
+}  // namespace stickslip::widgets

@@ -1,0 +1,32 @@
+#include "poincare_plot.hpp"
+
+#include <qwt_plot.h>
+#include <qwt_plot_curve.h>
+#include <qwt_symbol.h>
+
+#include "plot_style.hpp"
+
+namespace stickslip::widgets {
+
+PoincarePlot::PoincarePlot(QWidget* parent) : PlotWidget(parent) {
+    plot_->setTitle(QStringLiteral("Poincaré section"));
+    setAxisTitles(QStringLiteral("slider displacement x [mm]"), QStringLiteral("relative velocity V [m/s]"));
+    setFactors(1.0e3, 1.0);
+}
+
+void PoincarePlot::setSection(const std::vector<double>& slider_m, const std::vector<double>& relVel_mps, LawKind law) {
+    removeCurvesWithPrefix(modelLabel(law) + QLatin1Char(':'));
+    QVector<QPointF> pts;
+    const size_t n = std::min(slider_m.size(), relVel_mps.size());
+    pts.reserve(static_cast<int>(n));
+    for (size_t i = 0; i < n; ++i) pts.append(QPointF(slider_m[i] * xFactor_, relVel_mps[i] * yFactor_));
+    auto* c = addCurve(modelLabel(law) + QStringLiteral(": section"), law, style::modelColor(law));
+    c->setStyle(QwtPlotCurve::NoCurve);
+    const QColor col = style::modelColor(law);
+    c->setSymbol(new QwtSymbol(law == LawKind::Coulomb ? QwtSymbol::Cross : QwtSymbol::Ellipse, QBrush(col), QPen(col),
+                               n > 2000 ? QSize(2, 2) : QSize(4, 4)));
+    c->setSamples(pts);
+    rescale();
+}
+
+}  // namespace stickslip::widgets
