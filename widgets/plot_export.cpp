@@ -15,6 +15,7 @@
 #include <QSaveFile>
 #include <QSvgGenerator>
 #include <QTextStream>
+#include <algorithm>
 
 namespace stickslip::widgets {
 
@@ -43,14 +44,12 @@ QString csvField(const QString& s) {
 
 QString num(double v) { return QString::number(v, 'g', 17); }
 
-QwtPlotRenderer makeRenderer() {
-    QwtPlotRenderer r;
+void configure(QwtPlotRenderer& r) {
     // Paper-like documents: white background, no widget frames.
     r.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
     r.setDiscardFlag(QwtPlotRenderer::DiscardCanvasBackground, false);
     r.setDiscardFlag(QwtPlotRenderer::DiscardCanvasFrame, false);
     r.setLayoutFlag(QwtPlotRenderer::FrameWithScales, true);
-    return r;
 }
 
 }  // namespace
@@ -58,10 +57,17 @@ QwtPlotRenderer makeRenderer() {
 // Mirrors QwtPlotRenderer::renderDocument(), but renders into a QSaveFile so the target
 // appears only complete (renderDocument writes the final file name directly).
 bool exportPlot(const QwtPlot* plot, const QString& path, QString* error, const ExportOptions& options) {
-    if (!plot) {
-        setError(error, QStringLiteral("no plot to export"));
+    return exportPlots({plot}, 1, path, error, options);
+}
+
+bool exportPlots(const std::vector<const QwtPlot*>& plots, int columns, const QString& path, QString* error,
+                 const ExportOptions& options) {
+    if (plots.empty() || std::find(plots.begin(), plots.end(), nullptr) != plots.end()) {
+        setError(error, QStringLiteral("%1: no plot to export").arg(path));
         return false;
     }
+    columns = std::max(1, std::min(columns, static_cast<int>(plots.size())));
+    const int rows = (static_cast<int>(plots.size()) + columns - 1) / columns;
     const QString fmt = QFileInfo(path).suffix().toLower();
     if (fmt != QLatin1String("png") && fmt != QLatin1String("svg") && fmt != QLatin1String("pdf")) {
         setError(error, QStringLiteral("%1: unknown export format \"%2\" (use .png, .svg or .pdf)").arg(path, fmt));
@@ -75,15 +81,24 @@ bool exportPlot(const QwtPlot* plot, const QString& path, QString* error, const 
     const int dpi = options.resolution_dpi;
     const QSizeF size = options.size_mm * mmToInch * dpi;
     const QRectF documentRect(0.0, 0.0, size.width(), size.height());
-    QwtPlotRenderer renderer = makeRenderer();
-    auto* mutablePlot = const_cast<QwtPlot*>(plot);   // render() only reads; it takes a non-const pointer
+    QwtPlotRenderer renderer;
+    configure(renderer);
+    // Each plot in its cell; render() only reads the plot but takes a non-const pointer.
+    auto renderAll = [&](QPainter& painter, const QRectF& page) {
+        const double cw = page.width() / columns, ch = page.height() / rows;
+        for (size_t i = 0; i < plots.size(); ++i) {
+            const int r = static_cast<int>(i) / columns, c = static_cast<int>(i) % columns;
+            const QRectF cell(page.left() + c * cw, page.top() + r * ch, cw, ch);
+            renderer.render(const_cast<QwtPlot*>(plots[i]), &painter, cell.adjusted(2, 2, -2, -2));
+        }
+    };
 
     QSaveFile file(path);
     if (!file.open(QIODevice::WriteOnly)) {
         setError(error, QStringLiteral("%1: cannot open for writing: %2").arg(path, file.errorString()));
         return false;
     }
-    const QString title = plot->title().text();
+    const QString title = plots.front()->title().text();
     if (fmt == QLatin1String("svg")) {
         QSvgGenerator generator;
         generator.setTitle(title.isEmpty() ? QStringLiteral("StickSlip Lab plot") : title);
@@ -92,7 +107,7 @@ bool exportPlot(const QwtPlot* plot, const QString& path, QString* error, const 
         generator.setSize(documentRect.size().toSize());
         generator.setViewBox(documentRect);
         QPainter painter(&generator);
-        renderer.render(mutablePlot, &painter, documentRect);
+        renderAll(painter, documentRect);
     } else if (fmt == QLatin1String("pdf")) {
         QPdfWriter writer(&file);
         writer.setTitle(title);
@@ -101,7 +116,7 @@ bool exportPlot(const QwtPlot* plot, const QString& path, QString* error, const 
         writer.setPageMargins(QMarginsF(0, 0, 0, 0));
         writer.setResolution(dpi);
         QPainter painter(&writer);
-        renderer.render(mutablePlot, &painter, documentRect);
+        renderAll(painter, documentRect);
     } else {
         const QRect imageRect = documentRect.toRect();
         const int dotsPerMeter = qRound(dpi * mmToInch * 1000.0);
@@ -111,7 +126,7 @@ bool exportPlot(const QwtPlot* plot, const QString& path, QString* error, const 
         image.fill(QColor(Qt::white).rgb());
         {
             QPainter painter(&image);
-            renderer.render(mutablePlot, &painter, imageRect);
+            renderAll(painter, QRectF(imageRect));
         }
         if (!image.save(&file, "PNG")) {
             file.cancelWriting();

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <QSize>
+#include <vector>
 #include <QString>
 
 class QwtPlot;
@@ -19,6 +20,11 @@ struct ExportOptions {
 // .png, .svg or .pdf (case-insensitive); anything else is an error.
 bool exportPlot(const QwtPlot* plot, const QString& path, QString* error = nullptr,
                 const ExportOptions& options = {});
+
+// Several plots in one document, laid out row by row in `columns` columns (a multi-panel
+// figure like the paper's); size_mm is the size of the whole page.
+bool exportPlots(const std::vector<const QwtPlot*>& plots, int columns, const QString& path,
+                 QString* error = nullptr, const ExportOptions& options = {});
 
 // CSV of every curve (and spectrogram grid) attached to the plot, in display units:
 //   # <plot title>

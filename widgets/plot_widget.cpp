@@ -61,7 +61,8 @@ PlotWidget::PlotWidget(QWidget* parent) : QWidget(parent) {
     plot_->setCanvasBackground(Qt::white);
     plot_->setAutoReplot(false);
     if (auto* canvas = qobject_cast<QwtPlotCanvas*>(plot_->canvas())) {
-        canvas->setFrameStyle(QFrame::Box | QFrame::Plain);
+        canvas->setFrameShape(QFrame::Box);
+        canvas->setFrameShadow(QFrame::Plain);
         canvas->setLineWidth(1);
         canvas->setPalette(QPalette(Qt::white));
     }

@@ -3,6 +3,7 @@
 #include <qwt_plot.h>
 #include <qwt_plot_curve.h>
 #include <qwt_plot_marker.h>
+#include <qwt_plot_picker.h>
 
 #include <cmath>
 #include <limits>

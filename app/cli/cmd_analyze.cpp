@@ -1,16 +1,249 @@
-// PLACEHOLDER: `stickslip-cli analyze` is not implemented yet (owner replaces this file).
+// `stickslip-cli analyze`: the paper's signal analyses of one run file (simulated by
+// `simulate`, or measured), found by column name: power spectrum peaks, autocorrelation
+// decay time, stage–slider phase lag, friction-loop orientation counts and the 0–1 test.
+//
+// Columns used (any missing one only disables the analyses that need it):
+//   time_s (required); stage_disp_m; slider_disp_m; rel_vel_mps (else stage_vel_mps − slider
+//   velocity, else the central difference of stage − slider); friction_ratio (else
+//   friction_force_N / normal_force_N, else friction_force_N / band_tension_N, else
+//   friction_force_N alone — the orientation does not depend on a positive scale).
+#include <algorithm>
+#include <cmath>
 #include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
 
-#include "commands.hpp"
+#include "cli_common.hpp"
+#include "core/analysis/correlation.hpp"
+#include "core/analysis/loop_orientation.hpp"
+#include "core/analysis/spectrum.hpp"
+#include "core/analysis/zero_one_test.hpp"
+#include "core/io/csv_table.hpp"
+#include "core/version.hpp"
 
 namespace stickslip::cli {
 
+namespace {
+
+struct AnalyzeOptions {
+    std::string input, out = "-";
+    double frequency = 0;        // forcing frequency [Hz]; 0 = from the file / the stage spectrum
+    double naturalFrequency = 0; // ω_n [rad/s]; 0 = √(k/m) from '#' lines, else not reported
+    double maxLag = 2.0;         // autocorrelation lags up to [s]
+};
+
+using nlohmann::json;
+
+const std::vector<double>* col(const io::CsvTable& t, const char* name) {
+    const int j = t.column(name);
+    return j >= 0 ? &t.columns[static_cast<std::size_t>(j)] : nullptr;
+}
+
+// "# k = 8446 N/m" style comment lines (run files written by `simulate`).
+bool commentValue(const io::CsvTable& t, const std::string& key, double& v) {
+    for (const std::string& c : t.comments) {
+        std::istringstream is(c);
+        std::string k, eq;
+        double x = 0;
+        if ((is >> k >> eq >> x) && k == key && eq == "=") { v = x; return true; }
+    }
+    return false;
+}
+
+std::vector<double> centralDifference(const std::vector<double>& y, double fs) {
+    const std::size_t n = y.size();
+    std::vector<double> d(n, 0.0);
+    if (n < 2) return d;
+    for (std::size_t i = 1; i + 1 < n; ++i) d[i] = 0.5 * (y[i + 1] - y[i - 1]) * fs;
+    d[0] = (y[1] - y[0]) * fs;
+    d[n - 1] = (y[n - 1] - y[n - 2]) * fs;
+    return d;
+}
+
+// Stroboscopic series: y linearly interpolated at t0 + k T.
+std::vector<double> stroboscopic(const std::vector<double>& t, const std::vector<double>& y, double T) {
+    std::vector<double> out;
+    if (t.size() < 2 || !(T > 0)) return out;
+    std::size_t j = 0;
+    for (double tk = t.front(); tk <= t.back(); tk += T) {
+        while (j + 1 < t.size() && t[j + 1] < tk) ++j;
+        if (j + 1 >= t.size()) break;
+        const double s = (tk - t[j]) / (t[j + 1] - t[j]);
+        out.push_back(y[j] + s * (y[j + 1] - y[j]));
+    }
+    return out;
+}
+
+json nullable(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+void runAnalyze(const AnalyzeOptions& o, int& exitCode) {
+    io::CsvTable t;
+    io::CsvError err;
+    if (!io::readCsvTable(o.input, t, err)) {
+        reportError("analyze", err.what(), kBadInput, exitCode);
+        return;
+    }
+    const std::vector<double>* time = col(t, "time_s");
+    if (!time) {
+        reportError("analyze", o.input + ":" + std::to_string(t.headerLine) + ": no 'time_s' column", kBadInput, exitCode);
+        return;
+    }
+    const std::size_t n = time->size();
+    if (n < 64) {
+        reportError("analyze", o.input + ": " + std::to_string(n) + " data rows; need at least 64", kBadInput, exitCode);
+        return;
+    }
+    std::vector<double> dts(n - 1);
+    for (std::size_t i = 0; i + 1 < n; ++i) dts[i] = (*time)[i + 1] - (*time)[i];
+    std::nth_element(dts.begin(), dts.begin() + dts.size() / 2, dts.end());
+    const double dt = dts[dts.size() / 2];
+    if (!(dt > 0)) {
+        reportError("analyze", o.input + ": time_s is not increasing", kBadInput, exitCode);
+        return;
+    }
+    const double fs = 1.0 / dt;
+    const std::vector<double>* stage = col(t, "stage_disp_m");
+    const std::vector<double>* slider = col(t, "slider_disp_m");
+
+    json j;
+    j["input"] = o.input;
+    j["program"] = std::string("stickslip-cli ") + kVersion;
+    j["rows"] = n;
+    j["sample_rate_Hz"] = fs;
+    json used = json::object();
+    used["time"] = "time_s";
+
+    // Forcing frequency: option, '# f = …' line, else the stage spectrum's main peak.
+    double f = o.frequency;
+    std::string fSource = "option";
+    if (!(f > 0) && commentValue(t, "f", f)) fSource = "file";
+    if (!(f > 0) && stage) {
+        const PowerSpectrum ps = powerSpectrum(*stage, fs);
+        const auto pk = ps.ok ? spectrumPeaks(ps, 1) : std::vector<SpectralPeak>{};
+        if (!pk.empty()) { f = pk[0].frequency_Hz; fSource = "stage spectrum peak"; }
+    }
+    j["forcing_frequency_Hz"] = f > 0 ? json(f) : json(nullptr);
+    j["forcing_frequency_source"] = f > 0 ? fSource : "unknown";
+
+    // Spectrum and autocorrelation of the slider displacement (else the stage).
+    const std::vector<double>* sig = slider ? slider : stage;
+    if (sig) {
+        const std::string name = slider ? "slider_disp_m" : "stage_disp_m";
+        const PowerSpectrum ps = powerSpectrum(*sig, fs);
+        json s;
+        s["signal"] = name;
+        if (ps.ok) {
+            s["resolution_Hz"] = ps.resolution_Hz;
+            s["segments"] = ps.segments;
+            json peaks = json::array();
+            for (const SpectralPeak& p : spectrumPeaks(ps, 8, 1e-3))
+                peaks.push_back({{"frequency_Hz", p.frequency_Hz}, {"psd", p.psd}});
+            s["peaks"] = peaks;
+            if (f > 0) s["broadband_fraction"] = broadbandFraction(ps, f, 4, 2);
+        } else {
+            s["error"] = ps.message;
+        }
+        j["spectrum"] = s;
+        const std::size_t maxLag = std::min<std::size_t>(n - 1, static_cast<std::size_t>(o.maxLag * fs));
+        const Correlation ac = autocorrelation(*sig, fs, maxLag);
+        j["autocorrelation"] = {{"signal", name},
+                                {"max_lag_s", static_cast<double>(maxLag) / fs},
+                                {"decay_level", 0.36787944117144233},
+                                {"decay_time_s", nullable(correlationDecayTime(ac))}};
+    }
+
+    // Phase lag between stage and slider.
+    if (stage && slider && f > 0) {
+        double wn = o.naturalFrequency;
+        double k = 0, m = 0;
+        if (!(wn > 0) && commentValue(t, "k", k) && commentValue(t, "m", m) && k > 0 && m > 0) wn = std::sqrt(k / m);
+        const PhaseLag lag = stageSliderPhaseLag(*stage, *slider, fs, f, wn > 0 ? wn : 0.0);
+        json pl;
+        pl["lag_s"] = lag.lag_s;
+        pl["fraction_of_period"] = lag.fractionOfPeriod;
+        pl["correlation_peak"] = lag.peak;
+        pl["natural_frequency_rad_s"] = wn > 0 ? json(wn) : json(nullptr);
+        pl["nondimensional"] = wn > 0 ? json(lag.nondimensional) : json(nullptr);
+        pl["sign_convention"] = "positive: slider lags the stage";
+        j["phase_lag"] = pl;
+    }
+
+    // Relative velocity and friction ratio for the loops.
+    std::vector<double> V, rho;
+    if (const auto* v = col(t, "rel_vel_mps")) { V = *v; used["rel_vel"] = "rel_vel_mps"; }
+    else if (const auto* sv = col(t, "stage_vel_mps")) {
+        V = *sv;
+        if (slider) {
+            const auto xd = centralDifference(*slider, fs);
+            for (std::size_t i = 0; i < n; ++i) V[i] -= xd[i];
+            used["rel_vel"] = "stage_vel_mps - d/dt slider_disp_m";
+        } else {
+            used["rel_vel"] = "stage_vel_mps";
+        }
+    } else if (stage) {
+        std::vector<double> g = *stage;
+        if (slider) for (std::size_t i = 0; i < n; ++i) g[i] -= (*slider)[i];
+        V = centralDifference(g, fs);
+        used["rel_vel"] = slider ? "d/dt (stage_disp_m - slider_disp_m)" : "d/dt stage_disp_m";
+    }
+    if (const auto* r = col(t, "friction_ratio")) { rho = *r; used["friction_ratio"] = "friction_ratio"; }
+    else if (const auto* F = col(t, "friction_force_N")) {
+        rho = *F;
+        const auto* N = col(t, "normal_force_N");
+        const char* nName = "normal_force_N";
+        if (!N) { N = col(t, "band_tension_N"); nName = "band_tension_N"; }
+        if (N) {
+            for (std::size_t i = 0; i < n; ++i) rho[i] = (*N)[i] != 0 ? rho[i] / (*N)[i] : 0.0;
+            used["friction_ratio"] = std::string("friction_force_N / ") + nName;
+        } else {
+            used["friction_ratio"] = "friction_force_N (no normal force column)";
+        }
+    }
+    if (!V.empty() && !rho.empty() && f > 0) {
+        const LoopOrientation lo = frictionLoopOrientation(*time, V, rho, 1.0 / f);
+        j["loops"] = {{"cycles", lo.signedArea.size()},
+                      {"clockwise", lo.clockwise},
+                      {"counter_clockwise", lo.counterClockwise},
+                      {"degenerate", lo.degenerate},
+                      {"axes", "relative velocity (x) vs friction ratio (y)"}};
+    }
+
+    // 0–1 test on the stroboscopic (one per forcing period) slider displacement.
+    if (sig && f > 0) {
+        const std::vector<double> strobe = stroboscopic(*time, *sig, 1.0 / f);
+        const ZeroOneResult z = zeroOneTest(strobe);
+        json zj;
+        zj["series"] = std::string(slider ? "slider_disp_m" : "stage_disp_m") + " once per forcing period";
+        zj["samples"] = strobe.size();
+        zj["K"] = z.ok ? json(z.K) : json(nullptr);
+        if (!z.message.empty()) zj["note"] = z.message;
+        j["zero_one_test"] = zj;
+    }
+    j["columns_used"] = used;
+
+    std::string error;
+    if (!io::writeFileAtomically(o.out, j.dump(2) + "\n", &error)) {
+        reportError("analyze", error, kBadInput, exitCode);
+        return;
+    }
+    exitCode = kOk;
+}
+
+}  // namespace
+
 void addAnalyzeCommand(CLI::App& root, int& exitCode) {
-    auto* cmd = root.add_subcommand("analyze", "(not implemented yet)");
-    cmd->callback([&exitCode] {
-        std::cerr << "stickslip-cli analyze: not implemented yet\n";
-        exitCode = kRunFailedGeneric;
-    });
+    auto opts = std::make_shared<AnalyzeOptions>();
+    auto* cmd = root.add_subcommand("analyze", "Spectrum peaks, autocorrelation decay, phase lag, loop orientation "
+                                               "and 0-1 test of a run CSV (simulated or measured), as JSON");
+    cmd->add_option("--input", opts->input, "Run CSV with a time_s column (and stage/slider/force columns)")
+        ->required();
+    cmd->add_option("--out", opts->out, "JSON output ('-' = stdout)")->capture_default_str();
+    cmd->add_option("--frequency", opts->frequency, "Forcing frequency [Hz] (default: from the file or the stage spectrum)");
+    cmd->add_option("--natural-frequency", opts->naturalFrequency,
+                    "Natural frequency sqrt(k/m) [rad/s] for the non-dimensional phase lag (default: from '# k', '# m' lines)");
+    cmd->add_option("--max-lag", opts->maxLag, "Longest autocorrelation lag [s]")->capture_default_str();
+    cmd->callback([opts, &exitCode] { runAnalyze(*opts, exitCode); });
 }
 
 }  // namespace stickslip::cli

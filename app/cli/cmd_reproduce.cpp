@@ -1,16 +1,411 @@
-// PLACEHOLDER: `stickslip-cli reproduce` is not implemented yet (owner replaces this file).
+// `stickslip-cli reproduce --figure 19|20|22|23 --out DIR`: recomputes one of the paper's
+// numerical figures (Figs 19-23, ../shared/MODEL.md) and writes its data as CSV and the
+// figure as SVG and PNG, rendered headless (offscreen Qt platform) with the same plot widgets
+// the app uses. The resolution is deliberately coarser than the paper's by default so a run
+// finishes in about a minute; every knob is an option (see --help and README).
+//
+//   19, 20: continuation bifurcation sweeps in A (rate-state and Coulomb side by side).
+//   22:     A = 0.40 mm: phase portrait, Poincaré section, spectrum, autocorrelation.
+//   23:     eta = 0.2 s/m: bifurcation sweep in A, and at A = 4 mm the phase portrait,
+//           Poincaré section and spectrum.
+#include <cmath>
+#include <filesystem>
 #include <iostream>
+#include <memory>
+#include <sstream>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
+#include "core/analysis/correlation.hpp"
+#include "core/analysis/poincare.hpp"
+#include "core/analysis/spectrum.hpp"
+#include "core/analysis/sweep.hpp"
+#include "core/integrate/simulate.hpp"
+#include "core/io/csv_table.hpp"
+#include "core/io/run_csv.hpp"
+#include "core/presets.hpp"
+
+#ifdef STICKSLIP_HAVE_WIDGETS
+#include <QApplication>
+#include <QDir>
+#include <QElapsedTimer>
+
+#include "widgets/autocorrelation_plot.hpp"
+#include "widgets/bifurcation_plot.hpp"
+#include "widgets/phase_portrait_plot.hpp"
+#include "widgets/plot_export.hpp"
+#include "widgets/poincare_plot.hpp"
+#include "widgets/spectrum_plot.hpp"
+#include <qwt_plot.h>
+#endif
 
 namespace stickslip::cli {
 
+#ifdef STICKSLIP_HAVE_WIDGETS
+namespace {
+
+struct ReproduceOptions {
+    int figure = 0;
+    std::string out;
+    std::vector<std::string> sets;   // KEY=VALUE overrides of the figure's preset
+    int steps = 40;                  // swept A values (paper: a slow continuous sweep)
+    double from_m = 0.1e-3;          // sweep start [m]
+    double to_m = 5.0e-3;            // sweep end [m]
+    std::string direction = "up";    // up | down | both
+    long settle = 30;                // settle cycles per swept value / before a section
+    long samples = 30;               // Poincaré samples per swept value
+    long stepsPerPeriod = 2000;      // N: dt = T/N (the presets use 10 000)
+    long cycles = 40;                // recorded cycles for phase portraits and spectra
+    long sectionPoints = 1000;       // Poincaré points for Figs 22/23 (paper: 40 000)
+    bool coulomb = true;             // also the Coulomb model for Figs 19/20
+    int threads = 0;                 // unused by continuation; kept for symmetry with sweep
+};
+
+// Writes a '\r'-updated progress line on stderr.
+RunControl progressTo(const std::string& what) {
+    RunControl ctl;
+    ctl.progress = [what, last = -1](double f) mutable {
+        const int pct = static_cast<int>(std::floor(100.0 * f));
+        if (pct != last) {
+            last = pct;
+            std::cerr << "\r  " << what << ": " << pct << " %" << std::flush;
+            if (pct >= 100) std::cerr << '\n';
+        }
+    };
+    return ctl;
+}
+
+bool writeText(const std::string& path, const std::string& text, int& exitCode) {
+    std::string error;
+    if (!io::writeFileAtomically(path, text, &error)) {
+        reportError("reproduce", error, kBadInput, exitCode);
+        return false;
+    }
+    std::cout << "wrote " << path << '\n';
+    return true;
+}
+
+bool exportFigure(const std::vector<const QwtPlot*>& plots, int columns, const QSizeF& size_mm,
+                  const std::string& stem, int& exitCode) {
+    widgets::ExportOptions eo;
+    eo.size_mm = size_mm;
+    eo.resolution_dpi = 110;
+    for (const char* ext : {".svg", ".png"}) {
+        const QString path = QString::fromStdString(stem + ext);
+        QString error;
+        if (!widgets::exportPlots(plots, columns, path, &error, eo)) {
+            reportError("reproduce", error.toStdString(), kBadInput, exitCode);
+            return false;
+        }
+        std::cout << "wrote " << path.toStdString() << '\n';
+    }
+    return true;
+}
+
+std::string num(double v) {
+    std::ostringstream s;
+    s.precision(10);
+    s << v;
+    return s.str();
+}
+
+// Continuation sweep of A for one law; reports a failure and returns false.
+bool sweepA(const SimParams& base, LawKind law, const ReproduceOptions& o, SweepResult& out, int& exitCode) {
+    SimParams p = base;
+    p.law = law;
+    SweepOptions so;
+    so.key = "A";
+    so.from = o.from_m;
+    so.to = o.to_m;
+    so.steps = o.steps;
+    so.mode = SweepMode::Continuation;
+    parseSweepDirection(o.direction, so.direction);
+    so.settleCycles = o.settle;
+    so.sampleCycles = o.samples;
+    so.stepsPerPeriod = o.stepsPerPeriod;
+    if (const auto issues = so.validate(p); !issues.empty()) {
+        reportError("reproduce", formatIssues(issues), kBadArguments, exitCode);
+        return false;
+    }
+    QElapsedTimer clock;
+    clock.start();
+    out = bifurcationSweep(p, so, progressTo(std::string("sweep A, ") + (law == LawKind::Coulomb ? "Coulomb" : "rate-state")));
+    std::cerr << "  " << out.points.size() << " values in " << clock.elapsed() / 1000.0 << " s\n";
+    if (!out.ok()) {
+        reportError("reproduce", "sweep failed: " + out.message, kRunFailed, exitCode);
+        return false;
+    }
+    return true;
+}
+
+void appendSweepCsv(std::ostringstream& csv, std::ostringstream& summary, const SweepResult& r, LawKind law) {
+    const char* model = law == LawKind::Coulomb ? "coulomb" : "rate-state";
+    for (const SweepPoint& pt : r.points) {
+        const char* dir = pt.direction < 0 ? "down" : "up";
+        for (size_t i = 0; i < pt.section.size(); ++i) {
+            csv << model << ',' << num(pt.value) << ',' << dir << ',' << i << ',' << num(pt.section.slider_m[i]) << ','
+                << num(pt.section.relVel_mps[i]) << ',' << num(pt.section.ratio[i]) << '\n';
+        }
+        summary << model << ',' << num(pt.value) << ',' << dir << ',' << toString(pt.classification.motion) << ','
+                << pt.classification.period << ',' << num(pt.classification.stickFraction) << ','
+                << num(pt.classification.maxRelVel_mps) << '\n';
+    }
+}
+
+void fillBifurcation(widgets::BifurcationPlot& plot, const SweepResult& r, LawKind law, const QString& title) {
+    plot.plot()->setTitle(title);
+    for (const SweepPoint& pt : r.points) plot.appendPoint(pt, law);
+    plot.rescale();
+}
+
+// The run behind a phase portrait and spectrum: settle cycles discarded, then `cycles` kept,
+// dt = T/N, output every T/400.
+bool recordedRun(const SimParams& base, const ReproduceOptions& o, SimParams& p, RunResult& run, int& exitCode) {
+    p = base;
+    p.setup = SetupKind::Dynamics;
+    p.integration.dt_s = p.drive.period() / static_cast<double>(o.stepsPerPeriod);
+    p.integration.outputInterval_s = p.drive.period() / 400.0;
+    p.transientCycles = static_cast<double>(o.settle);
+    p.cycles = static_cast<double>(o.cycles);
+    if (const auto issues = p.validate(); !issues.empty()) {
+        reportError("reproduce", formatIssues(issues), kBadArguments, exitCode);
+        return false;
+    }
+    run = simulate(p, progressTo("time series"));
+    if (!run.ok()) {
+        reportError("reproduce", std::string("run ") + toString(run.status) + ": " + run.message, kRunFailed, exitCode);
+        return false;
+    }
+    return true;
+}
+
+bool section(const SimParams& base, const ReproduceOptions& o, PoincareSection& s, int& exitCode) {
+    PoincareOptions po;
+    po.stepsPerPeriod = o.stepsPerPeriod;
+    po.settleCycles = o.settle;
+    po.cycles = o.sectionPoints;
+    if (const auto issues = po.validate(); !issues.empty()) {
+        reportError("reproduce", formatIssues(issues), kBadArguments, exitCode);
+        return false;
+    }
+    s = poincareSection(base, po, progressTo("Poincare section"));
+    if (!s.ok()) {
+        reportError("reproduce", "Poincare section failed: " + s.message, kRunFailed, exitCode);
+        return false;
+    }
+    return true;
+}
+
+std::string sectionCsv(const PoincareSection& s) {
+    std::ostringstream csv;
+    csv << "# Poincare section, one point per forcing period (phase 0)\n";
+    csv << "sample,t_s,slider_disp_m,rel_vel_mps,friction_ratio\n";
+    for (size_t i = 0; i < s.size(); ++i)
+        csv << i << ',' << num(s.t_s[i]) << ',' << num(s.slider_m[i]) << ',' << num(s.relVel_mps[i]) << ','
+            << num(s.ratio[i]) << '\n';
+    return csv.str();
+}
+
+std::vector<double> sliderSeries(const RunResult& run) {
+    std::vector<double> x;
+    x.reserve(run.samples.size());
+    for (const Sample& s : run.samples) x.push_back(s.slider_m);
+    return x;
+}
+
+std::string header(int figure, const SimParams& p, const ReproduceOptions& o) {
+    std::ostringstream h;
+    h << "# stickslip-cli reproduce --figure " << figure << "\n# steps_per_period = " << o.stepsPerPeriod
+      << ", settle_cycles = " << o.settle << "\n# params:";
+    for (const auto& key : paramKeys()) {
+        double v = 0;
+        if (getParam(p, key, v)) h << ' ' << key << '=' << num(v);
+    }
+    h << '\n';
+    return h.str();
+}
+
+void runFigure(const ReproduceOptions& o, int& exitCode) {
+    Preset preset;
+    if (!findPreset("fig" + std::to_string(o.figure), preset)) {
+        reportError("reproduce", "no preset for figure " + std::to_string(o.figure), kBadArguments, exitCode);
+        return;
+    }
+    SimParams base = preset.params;
+    for (const auto& s : o.sets) {
+        std::string key, why;
+        double v = 0;
+        if (!parseAssignment(s, key, v, &why) || !setParam(base, key, v, &why)) {
+            reportError("reproduce", why, kBadArguments, exitCode);
+            return;
+        }
+    }
+    if (const auto issues = base.validate(); !issues.empty()) {
+        reportError("reproduce", formatIssues(issues), kBadArguments, exitCode);
+        return;
+    }
+    std::error_code ec;
+    std::filesystem::create_directories(o.out, ec);
+    if (ec) {
+        reportError("reproduce", o.out + ": cannot create directory: " + ec.message(), kBadInput, exitCode);
+        return;
+    }
+
+    // Headless Qt: the widgets need a QApplication; never a display.
+    std::unique_ptr<QApplication> app;
+    if (!QApplication::instance()) {
+        if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+        static int argc = 1;
+        static char name[] = "stickslip-cli";
+        static char* argv[] = {name, nullptr};
+        app = std::make_unique<QApplication>(argc, argv);
+    }
+
+    const std::string stem = (std::filesystem::path(o.out) / ("fig" + std::to_string(o.figure))).string();
+    const QString aTitle = QStringLiteral("stage amplitude A [mm]");
+    const QString xTitle = QStringLiteral("Poincaré samples of slider x [mm]");
+    const std::string fig = "Fig. " + std::to_string(o.figure);
+
+    if (o.figure == 19 || o.figure == 20) {
+        SweepResult rs, cl;
+        if (!sweepA(base, LawKind::RateState, o, rs, exitCode)) return;
+        if (o.coulomb && !sweepA(base, LawKind::Coulomb, o, cl, exitCode)) return;
+        std::ostringstream csv, summary;
+        csv << header(o.figure, base, o) << "model,param_value,direction,sample,slider_disp_m,rel_vel_mps,friction_ratio\n";
+        summary << header(o.figure, base, o) << "model,param_value,direction,class,period,stick_fraction,max_rel_vel_mps\n";
+        appendSweepCsv(csv, summary, rs, LawKind::RateState);
+        if (o.coulomb) appendSweepCsv(csv, summary, cl, LawKind::Coulomb);
+        if (!writeText(stem + "_sweep.csv", csv.str(), exitCode)) return;
+        if (!writeText(stem + "_summary.csv", summary.str(), exitCode)) return;
+
+        const QString setText = QStringLiteral("k = %1 N/m, t_N = %2 N, f = %3 Hz, ε_T = %4 N/m")
+                                    .arg(base.rig.stiffness_N_per_m)
+                                    .arg(base.rig.normalForce_N)
+                                    .arg(base.drive.frequency_Hz)
+                                    .arg(base.rateState.epsT_N_per_m, 0, 'g', 3);
+        widgets::BifurcationPlot a, c;
+        a.setAxes(aTitle, 1e3, xTitle, 1e3);
+        c.setAxes(aTitle, 1e3, xTitle, 1e3);
+        fillBifurcation(a, rs, LawKind::RateState,
+                        QString::fromStdString(fig) + QStringLiteral(", rate-state model: ") + setText);
+        std::vector<const QwtPlot*> plots{a.plot()};
+        if (o.coulomb) {
+            fillBifurcation(c, cl, LawKind::Coulomb, QString::fromStdString(fig) + QStringLiteral(", Coulomb model (μ = %1)").arg(base.coulomb.mu));
+            plots.push_back(c.plot());
+        }
+        exportFigure(plots, 1, QSizeF(180, o.coulomb ? 200 : 110), stem, exitCode);
+        return;
+    }
+
+    // Figs 22 and 23: one settled motion at the preset's A.
+    SimParams runParams;
+    RunResult run;
+    PoincareSection sec;
+    if (!recordedRun(base, o, runParams, run, exitCode)) return;
+    if (!section(base, o, sec, exitCode)) return;
+    std::string error;
+    if (!io::writeRunCsv(stem + "_run.csv", runParams, run, &error, {"reproduce --figure " + std::to_string(o.figure)})) {
+        reportError("reproduce", error, kBadInput, exitCode);
+        return;
+    }
+    std::cout << "wrote " << stem << "_run.csv\n";
+    if (!writeText(stem + "_poincare.csv", header(o.figure, base, o) + sectionCsv(sec), exitCode)) return;
+
+    const double fs = 1.0 / runParams.integration.outputInterval_s;
+    const std::vector<double> x = sliderSeries(run);
+    const PowerSpectrum psd = powerSpectrum(x, fs);
+    const Correlation ac = autocorrelation(x, fs, static_cast<size_t>(std::lround(10.0 * runParams.drive.period() * fs)));
+    {
+        std::ostringstream csv;
+        csv << header(o.figure, base, o) << "frequency_Hz,psd_slider_m2_per_Hz\n";
+        for (size_t i = 0; i < psd.frequency_Hz.size(); ++i) csv << num(psd.frequency_Hz[i]) << ',' << num(psd.psd[i]) << '\n';
+        if (!writeText(stem + "_spectrum.csv", csv.str(), exitCode)) return;
+        std::ostringstream acsv;
+        acsv << header(o.figure, base, o) << "lag_s,autocorrelation\n";
+        for (size_t i = 0; i < ac.lag_s.size(); ++i) acsv << num(ac.lag_s[i]) << ',' << num(ac.r[i]) << '\n';
+        if (!writeText(stem + "_autocorrelation.csv", acsv.str(), exitCode)) return;
+    }
+
+    const QString at = QStringLiteral("A = %1 mm, η = %2 s/m").arg(base.drive.amplitude_m * 1e3).arg(base.rateState.eta_s_per_m);
+    widgets::PhasePortraitPlot phase;
+    phase.setRun(run);
+    phase.plot()->setTitle(QString::fromStdString(fig) + QStringLiteral(" phase portrait, ") + at);
+    widgets::PoincarePlot poincare;
+    poincare.setSection(sec);
+    poincare.plot()->setTitle(QStringLiteral("Poincaré section (%1 points)").arg(sec.size()));
+    widgets::SpectrumPlot spectrum;
+    spectrum.setValueTitle(QStringLiteral("PSD of slider x [m²/Hz]"));
+    spectrum.setSpectrum(psd.frequency_Hz, psd.psd);
+    spectrum.plot()->setTitle(QStringLiteral("Spectrum of x (Welch, Hann)"));
+    widgets::AutocorrelationPlot autocorr;
+    autocorr.setAutocorrelation(ac.lag_s, ac.r);
+    autocorr.plot()->setTitle(QStringLiteral("Autocorrelation of x"));
+
+    if (o.figure == 22) {
+        exportFigure({phase.plot(), poincare.plot(), spectrum.plot(), autocorr.plot()}, 2, QSizeF(240, 170), stem,
+                     exitCode);
+        return;
+    }
+    // Fig. 23: the bifurcation sweep with η = 0.2 as the first panel.
+    SweepResult rs;
+    if (!sweepA(base, LawKind::RateState, o, rs, exitCode)) return;
+    std::ostringstream csv, summary;
+    csv << header(o.figure, base, o) << "model,param_value,direction,sample,slider_disp_m,rel_vel_mps,friction_ratio\n";
+    summary << header(o.figure, base, o) << "model,param_value,direction,class,period,stick_fraction,max_rel_vel_mps\n";
+    appendSweepCsv(csv, summary, rs, LawKind::RateState);
+    if (!writeText(stem + "_sweep.csv", csv.str(), exitCode)) return;
+    if (!writeText(stem + "_summary.csv", summary.str(), exitCode)) return;
+    widgets::BifurcationPlot bif;
+    bif.setAxes(aTitle, 1e3, xTitle, 1e3);
+    fillBifurcation(bif, rs, LawKind::RateState,
+                    QString::fromStdString(fig) + QStringLiteral(", rate-state, η = %1 s/m").arg(base.rateState.eta_s_per_m));
+    exportFigure({bif.plot(), phase.plot(), poincare.plot(), spectrum.plot()}, 2, QSizeF(240, 170), stem, exitCode);
+}
+
+}  // namespace
+#endif
+
 void addReproduceCommand(CLI::App& root, int& exitCode) {
-    auto* cmd = root.add_subcommand("reproduce", "(not implemented yet)");
+    auto* cmd = root.add_subcommand(
+        "reproduce", "Recompute a figure of the paper (19, 20, 22, 23): data as CSV, figure as SVG and PNG");
+#ifdef STICKSLIP_HAVE_WIDGETS
+    auto o = std::make_shared<ReproduceOptions>();
+    cmd->add_option("--figure", o->figure, "Figure number: 19, 20, 22 or 23")
+        ->required()
+        ->check(CLI::IsMember({19, 20, 22, 23}));
+    cmd->add_option("--out", o->out, "Output directory (created if missing)")->required();
+    cmd->add_option("--set", o->sets, "Override a preset parameter, KEY=VALUE (e.g. k=410); repeatable");
+    cmd->add_option("--steps", o->steps, "Swept amplitude values for bifurcation diagrams")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--from", o->from_m, "First swept amplitude A [m]")->capture_default_str();
+    cmd->add_option("--to", o->to_m, "Last swept amplitude A [m]")->capture_default_str();
+    cmd->add_option("--direction", o->direction, "Sweep direction")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"up", "down", "both"}));
+    cmd->add_option("--settle", o->settle, "Settle cycles discarded per swept value / before a section")
+        ->capture_default_str()
+        ->check(CLI::Range(0L, 1000000L));
+    cmd->add_option("--samples", o->samples, "Poincare samples kept per swept value")
+        ->capture_default_str()
+        ->check(CLI::Range(1L, 1000000L));
+    cmd->add_option("--steps-per-period", o->stepsPerPeriod, "Time steps per forcing period (dt = T/N)")
+        ->capture_default_str()
+        ->check(CLI::Range(50L, 1000000L));
+    cmd->add_option("--cycles", o->cycles, "Recorded cycles for the phase portrait and spectrum (Figs 22, 23)")
+        ->capture_default_str()
+        ->check(CLI::Range(1L, 1000000L));
+    cmd->add_option("--section-points", o->sectionPoints, "Poincare section points (Figs 22, 23; paper: 40000)")
+        ->capture_default_str()
+        ->check(CLI::Range(1L, 10000000L));
+    cmd->add_flag("--no-coulomb", [o](std::int64_t) { o->coulomb = false; }, "Skip the Coulomb panel (Figs 19, 20)");
+    cmd->callback([o, &exitCode] { runFigure(*o, exitCode); });
+#else
     cmd->callback([&exitCode] {
-        std::cerr << "stickslip-cli reproduce: not implemented yet\n";
-        exitCode = kRunFailedGeneric;
+        reportError("reproduce", "this build has no plot widgets (configure with -DSTICKSLIP_BUILD_GUI=ON)",
+                    kRunFailedGeneric, exitCode);
     });
+#endif
 }
 
 }  // namespace stickslip::cli

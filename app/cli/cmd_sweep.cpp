@@ -1,16 +1,148 @@
-// PLACEHOLDER: `stickslip-cli sweep` is not implemented yet (owner replaces this file).
+// `stickslip-cli sweep`: bifurcation sweep of one parameter (continuation or independent),
+// writing the Poincaré samples (--out) and a per-value summary (--summary).
+#include <cmath>
+#include <cstdio>
 #include <iostream>
+#include <memory>
+#include <tuple>
+#include <numbers>
 
-#include "commands.hpp"
+#include "cli_common.hpp"
+#include "core/analysis/sweep.hpp"
+#include "core/io/csv_table.hpp"
+#include "core/io/units.hpp"
+#include "core/version.hpp"
 
 namespace stickslip::cli {
 
+namespace {
+
+struct SweepCliOptions {
+    SimOptions sim;
+    std::string param = "A", from, to, direction = "up", mode = "continuation", out, summary;
+    int steps = 50;
+    long settle = 50, samples = 100, stepsPerPeriod = 0;
+    int threads = 0;
+    double phase = 0.0, tol = 1e-4;
+    bool noLyapunov = false, progress = false;
+};
+
+std::string num(double v) {
+    if (std::isnan(v)) return "nan";
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.10g", v);
+    return buf;
+}
+
+void runSweep(const SweepCliOptions& o, int& exitCode) {
+    SimParams p;
+    std::string error;
+    if (const int rc = buildSimParams(o.sim, p, &error); rc != kOk) {
+        reportError("sweep", error, rc, exitCode);
+        return;
+    }
+    SweepOptions so;
+    so.key = o.param;
+    std::string unit;
+    if (!io::paramUnit(o.param, unit)) {
+        std::string keys;
+        for (const std::string& k : paramKeys()) keys += " " + k;
+        reportError("sweep", "--param '" + o.param + "' is not a parameter key (known:" + keys + ")", kBadArguments,
+                    exitCode);
+        return;
+    }
+    if (!io::parseParamValue(o.param, o.from, so.from, &error) || !io::parseParamValue(o.param, o.to, so.to, &error)) {
+        reportError("sweep", error, kBadArguments, exitCode);
+        return;
+    }
+    if (!parseSweepDirection(o.direction, so.direction)) {
+        reportError("sweep", "--direction '" + o.direction + "' is not one of: up, down, both", kBadArguments, exitCode);
+        return;
+    }
+    if (!parseSweepMode(o.mode, so.mode)) {
+        reportError("sweep", "--mode '" + o.mode + "' is not one of: continuation, independent", kBadArguments,
+                    exitCode);
+        return;
+    }
+    so.steps = o.steps;
+    so.settleCycles = o.settle;
+    so.sampleCycles = o.samples;
+    so.stepsPerPeriod = o.stepsPerPeriod;
+    so.threads = o.threads;
+    so.phase_rad = o.phase;
+    so.lyapunov = !o.noLyapunov;
+    so.classify.relTol = o.tol;
+    if (ParamIssues issues = so.validate(p); !issues.empty()) {
+        reportError("sweep", formatIssues(issues), kBadArguments, exitCode);
+        return;
+    }
+    RunControl ctl;
+    if (o.progress)
+        ctl.progress = [](double f) { std::fprintf(stderr, "\rsweep: %5.1f %%", 100.0 * f); };
+    const SweepResult r = bifurcationSweep(p, so, ctl);
+    if (o.progress) std::fprintf(stderr, "\n");
+
+    std::string head = std::string("# stickslip-cli ") + kVersion + " sweep\n# param = " + o.param + " [" + unit +
+                       "]\n# mode = " + toString(so.mode) + ", direction = " + toString(so.direction) +
+                       "\n# settle = " + std::to_string(so.settleCycles) + " cycles, samples = " +
+                       std::to_string(so.sampleCycles) + ", steps per period = " +
+                       std::to_string(stepsPerPeriodFor(p, so.stepsPerPeriod)) + ", period tolerance = " +
+                       num(so.classify.relTol) + "\n# status = " + toString(r.status) +
+                       (r.message.empty() ? "" : " (" + r.message + ")") + "\n";
+    for (const std::string& k : paramKeys()) {
+        double v = 0;
+        if (k != o.param && getParam(p, k, v)) head += "# " + k + " = " + num(v) + "\n";
+    }
+    std::string csv = head + "param_value,direction,sample,slider_disp_m,rel_vel_mps,friction_ratio\n";
+    std::string sum = head + "param_value,direction,class,period,stick_fraction,max_rel_vel_mps,lyapunov_per_s\n";
+    for (const SweepPoint& pt : r.points) {
+        const std::string v = num(pt.value), dir = pt.direction > 0 ? "up" : "down";
+        for (std::size_t i = 0; i < pt.section.size(); ++i)
+            csv += v + "," + dir + "," + std::to_string(i) + "," + num(pt.section.slider_m[i]) + "," +
+                   num(pt.section.relVel_mps[i]) + "," + num(pt.section.ratio[i]) + "\n";
+        sum += v + "," + dir + "," + toString(pt.classification.motion) + "," +
+               std::to_string(pt.classification.period) + "," + num(pt.classification.stickFraction) + "," +
+               num(pt.classification.maxRelVel_mps) + "," + num(pt.lyapunovPerSecond) + "\n";
+    }
+    if (!io::writeFileAtomically(o.out, csv, &error) ||
+        (!o.summary.empty() && !io::writeFileAtomically(o.summary, sum, &error))) {
+        reportError("sweep", error, kBadInput, exitCode);
+        return;
+    }
+    if (r.status == RunStatus::Failed) { reportError("sweep", "sweep failed: " + r.message, kRunFailed, exitCode); return; }
+    if (r.status == RunStatus::Cancelled) { reportError("sweep", "sweep cancelled", kCancelled, exitCode); return; }
+    exitCode = kOk;
+}
+
+}  // namespace
+
 void addSweepCommand(CLI::App& root, int& exitCode) {
-    auto* cmd = root.add_subcommand("sweep", "(not implemented yet)");
-    cmd->callback([&exitCode] {
-        std::cerr << "stickslip-cli sweep: not implemented yet\n";
-        exitCode = kRunFailedGeneric;
-    });
+    auto opts = std::make_shared<SweepCliOptions>();
+    auto* cmd = root.add_subcommand("sweep", "Bifurcation sweep of one parameter: Poincare samples and a per-value "
+                                             "summary (stick / periodic / irregular, Lyapunov exponent)");
+    addSimOptions(cmd, opts->sim);
+    cmd->add_option("--param", opts->param, "Parameter key to sweep (A, f, tN, k, mu, eta, Dc, vc, ...)")
+        ->capture_default_str();
+    cmd->add_option("--from", opts->from, "First value (SI or with a unit, e.g. 0.1mm)")->required();
+    cmd->add_option("--to", opts->to, "Last value")->required();
+    cmd->add_option("--steps", opts->steps, "Number of values, endpoints included")->capture_default_str();
+    cmd->add_option("--direction", opts->direction, "up, down or both (down continues from the end of up)")
+        ->capture_default_str();
+    cmd->add_option("--settle", opts->settle, "Cycles discarded per value")->capture_default_str();
+    cmd->add_option("--samples", opts->samples, "Poincare samples (cycles) kept per value")->capture_default_str();
+    cmd->add_option("--mode", opts->mode, "continuation (state carried over) or independent (each value from rest, "
+                                          "in parallel)")
+        ->capture_default_str();
+    cmd->add_option("--threads", opts->threads, "Threads for --mode independent (0 = all cores)")->capture_default_str();
+    cmd->add_option("--steps-per-period", opts->stepsPerPeriod, "Time steps per forcing period (0 = from --dt)")
+        ->capture_default_str();
+    cmd->add_option("--phase", opts->phase, "Section phase in the forcing cycle [rad]")->capture_default_str();
+    cmd->add_option("--tol", opts->tol, "Relative tolerance of the period test")->capture_default_str();
+    cmd->add_flag("--no-lyapunov", opts->noLyapunov, "Skip the largest Lyapunov exponent (halves the cost)");
+    cmd->add_flag("--progress", opts->progress, "Print progress on stderr");
+    cmd->add_option("--out", opts->out, "Poincare samples CSV ('-' = stdout)")->required();
+    cmd->add_option("--summary", opts->summary, "Per-value summary CSV");
+    cmd->callback([opts, &exitCode] { runSweep(*opts, exitCode); });
 }
 
 }  // namespace stickslip::cli

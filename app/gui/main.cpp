@@ -3,6 +3,7 @@
 // the first results are drawn, then quit).
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QDockWidget>
 #include <QScreen>
 #include <QTimer>
 #include <cstdio>
@@ -12,6 +13,8 @@
 #include "core/version.hpp"
 #include "main_window.hpp"
 #include "parameter_panel.hpp"
+#include "view_set.hpp"
+#include "widgets/rig_view.hpp"
 
 int main(int argc, char** argv) {
     QApplication app(argc, argv);
@@ -28,7 +31,9 @@ int main(int argc, char** argv) {
     QCommandLineOption raiseOpt("raise", "Bring this view to the front (timeseries, rig, loop, phase, poincare, "
                                          "spectrum, autocorrelation, bifurcation, map).", "VIEW");
     QCommandLineOption sessionOpt("session", "Open this session file.", "FILE");
-    cli.addOptions({presetOpt, shotOpt, raiseOpt, sessionOpt});
+    QCommandLineOption shotViewOpt("screenshot-view",
+                                   "With --screenshot: grab only this view (floated at 960x560), e.g. rig.", "VIEW");
+    cli.addOptions({presetOpt, shotOpt, raiseOpt, sessionOpt, shotViewOpt});
     cli.process(app);
 
     const bool screenshot = cli.isSet(shotOpt);
@@ -46,6 +51,17 @@ int main(int argc, char** argv) {
         }
     }
     if (cli.isSet(raiseOpt)) w.raiseView(cli.value(raiseOpt));
+    QWidget* target = &w;
+    if (screenshot && cli.isSet(shotViewOpt)) {
+        QDockWidget* d = w.dock(cli.value(shotViewOpt));
+        if (!d) {
+            std::fprintf(stderr, "stickslip: unknown view '%s'\n", qPrintable(cli.value(shotViewOpt)));
+            return 2;
+        }
+        d->setFloating(true);
+        d->resize(960, 560);
+        target = d;
+    }
     w.show();
 
     if (screenshot) {
@@ -53,11 +69,14 @@ int main(int argc, char** argv) {
         // After the first outcome with the final parameters: let the plots (and the rig
         // animation) draw for a moment, then grab the window itself.
         auto armed = std::make_shared<bool>(true);
-        QObject::connect(&w, &stickslip::gui::MainWindow::runShown, &w, [&w, file, armed](const auto&) {
+        QObject::connect(&w, &stickslip::gui::MainWindow::runShown, &w, [&w, target, file, armed](const auto&) {
             if (!*armed) return;
             *armed = false;
-            QTimer::singleShot(1500, &w, [&w, file] {
-                const QPixmap shot = w.grab();
+            // Animate the rig so the picture shows it (and the time-series cursor) mid-run.
+            w.views()->rig()->play();
+            QTimer::singleShot(2500, &w, [&w, target, file] {
+                w.views()->rig()->pause();
+                const QPixmap shot = target->grab();
                 const bool ok = shot.save(file, "PNG");
                 std::fprintf(stderr, "stickslip: %s %s (%dx%d)\n", ok ? "saved" : "could not save", qPrintable(file),
                              shot.width(), shot.height());

@@ -123,7 +123,7 @@ void MainWindow::buildMenus() {
         const QString p = QFileDialog::getOpenFileName(this, tr("Open measured CSV"), {}, tr("CSV (*.csv *.txt)"));
         if (!p.isEmpty()) openFile(p);
     });
-    a->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_M));
+    a->setShortcut(QKeySequence(QStringLiteral("Ctrl+M")));
     file->addAction(tr("&Clear measured overlay"), this, [this] {
         views_->clearMeasured();
         measuredPath_.clear();
@@ -137,7 +137,7 @@ void MainWindow::buildMenus() {
         exp->addAction(v.title + "…", this, [this, id] { exportView(id); });
     }
     a = file->addAction(tr("Export run data as CSV…"), this, &MainWindow::exportRunCsv);
-    a->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_E));
+    a->setShortcut(QKeySequence(QStringLiteral("Ctrl+E")));
     file->addSeparator();
     a = file->addAction(tr("&Quit"), this, &QWidget::close);
     a->setShortcut(QKeySequence::Quit);
@@ -151,19 +151,19 @@ void MainWindow::buildMenus() {
     }
     presets->addSeparator();
     a = presets->addAction(tr("&Reset to preset"), panel_, &ParameterPanel::resetToPreset);
-    a->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_R));
+    a->setShortcut(QKeySequence(QStringLiteral("Ctrl+R")));
 
     QMenu* analysis = menuBar()->addMenu(tr("&Analysis"));
     a = analysis->addAction(tr("&Bifurcation sweep…"), this, [this] {
         sweepDialog_->show();
         sweepDialog_->raise();
     });
-    a->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_B));
+    a->setShortcut(QKeySequence(QStringLiteral("Ctrl+B")));
     a = analysis->addAction(tr("Periodicity &map…"), this, [this] {
         mapDialog_->show();
         mapDialog_->raise();
     });
-    a->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_M));
+    a->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+M")));
     a = analysis->addAction(tr("&Cancel all jobs"), controller_, &SimulationController::cancelAll);
     a->setShortcut(QKeySequence(Qt::Key_Escape));
 

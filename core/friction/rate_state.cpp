@@ -112,9 +112,9 @@ ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, d
         x = xn;
         eval(x, R, dR, alpha);
         if (R > 0.0) lo = x; else hi = x;
-        // Newton converges quadratically: after a step of relative size 1e-7 the error of the
-        // new iterate is ~1e-14 relative, below what the step's own truncation error can see.
-        if (std::abs(R) <= ftol || step <= 1e-7 * x || hi - lo <= 1e-15 * hi) { ok = true; break; }
+        // Stop on the residual (relative to the trial force), on a collapsed bracket, or when the
+        // iterate no longer moves (round-off floor).
+        if (std::abs(R) <= ftol || hi - lo <= 1e-15 * hi || step <= 4e-16 * x) { ok = true; break; }
     }
     res.iterations = it + 1;
     res.converged = ok;

@@ -372,8 +372,11 @@ Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome&
     return diagnose(dr, dec, cx.opt->stickVelocity_mps);
 }
 
-double bic(double ss, double n, double tau, int p) {
-    const double neff = std::max(n / std::max(tau, 1.0), 2.0);
+// Penalised criterion with the effective number of independent residuals n_eff. The residual
+// of a model that is slightly wrong repeats from one slip episode to the next, so samples
+// within an episode are not independent: n_eff = min(n/τ_int, number of slip episodes).
+double bic(double ss, double n, double neffCap, int p) {
+    const double neff = std::max(std::min(n, neffCap), 2.0);
     return neff * std::log(std::max(ss, 1e-300) / std::max(n, 1.0)) + p * std::log(neff);
 }
 
@@ -438,6 +441,19 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         if (!findEffect(c, info)) { res.message = "unknown effect '" + c + "'"; return res; }
     }
 
+    // Slip episodes in the fit runs (the independent units of the penalised criterion).
+    double episodes = 0;
+    for (size_t i : fitIdx) {
+        double last = 0;
+        episodes += 1;
+        for (double v : cx.runs[i].V) {
+            if (std::abs(v) < opt.stickVelocity_mps) continue;
+            const double sg = v > 0 ? 1 : -1;
+            if (last != 0 && sg != last) episodes += 1;
+            last = sg;
+        }
+    }
+    res.slipEpisodes = episodes;
     // Baseline.
     progress("baseline", 0.0);
     Spec spec;
@@ -459,8 +475,8 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
     std::map<std::string, CandidateScore> scores;
     for (int round = 1; round <= opt.maxEffects; ++round) {
         if (opt.cancel && opt.cancel->load()) { res.cancelled = true; break; }
-        const double tau = curDiag.integratedAcfTime;
-        const double bicCur = bic(cur.ss, cur.count, tau, cur.nFree);
+        const double neffCap = std::min(cur.count / std::max(curDiag.integratedAcfTime, 1.0), episodes);
+        const double bicCur = bic(cur.ss, cur.count, neffCap, cur.nFree);
         std::vector<std::pair<CandidateScore, FitOutcome>> tried;
         size_t k = 0;
         for (const std::string& c : cands) {
@@ -482,13 +498,13 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
             }
             Spec s2 = spec;
             s2.effects.push_back(c);
-            const FitOutcome f = fitSpec(cx, s2, cur.values, fitIdx, opt.multistarts, res.fits);
+            const FitOutcome f = fitSpec(cx, s2, cur.values, fitIdx, 1, res.fits);
             if (!f.ok) {
                 sc.reason = "fit failed: " + f.message;
                 scores[c] = sc;
                 continue;
             }
-            sc.deltaBic = bic(f.ss, f.count, tau, f.nFree) - bicCur;
+            sc.deltaBic = bic(f.ss, f.count, neffCap, f.nFree) - bicCur;
             sc.fitNrmse = f.count > 0 ? std::sqrt(f.ss / f.count) : 0.0;
             for (const ParamEstimate& p : f.estimates)
                 if (p.name.rfind(c + ".", 0) == 0) sc.params.push_back({p.name.substr(c.size() + 1), p.value, p.stderr_});
@@ -666,7 +682,9 @@ nlohmann::json toJson(const IdentifyResult& r) {
     j["diagnostics"] = {{"before", toJson(r.diagnosticsBefore, true)}, {"after", toJson(r.diagnosticsAfter, true)}};
     j["unexplained"] = r.unexplained;
     if (r.unexplained) j["unexplained_reason"] = r.unexplainedReason;
-    j["selection"] = {{"criterion", "BIC with n_eff = n / tau_int, margin 10, plus lower held-out (leave-one-run-out) NRMSE"}};
+    j["selection"] = {{"criterion", "BIC with n_eff = min(n / tau_int, slip episodes); an effect must lower it by more than "
+                                    "the margin AND lower the held-out NRMSE (leave-one-run-out, or the --validate-on runs)"},
+                      {"slip_episodes", r.slipEpisodes}};
     j["wall_time_s"] = r.wallTime_s;
     j["fits"] = r.fits;
     return j;

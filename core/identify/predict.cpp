@@ -91,7 +91,6 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
     m.stage = StageMotion::tabulated(t, r[Signal::StageDisp]);
     const size_t segLen = std::max<size_t>(2, static_cast<size_t>(std::lround(s.segment_s / run.dt_s)));
     const size_t spacing = std::max(segLen, static_cast<size_t>(std::lround(s.segmentSpacing_s / run.dt_s)));
-    const double tN = rig.normalForce_N;
     for (size_t s0 = run.begin; s0 + segLen < run.end; s0 += spacing) {
         DynState st;
         st.t = t[s0];

@@ -66,13 +66,15 @@ Sos butterworthLowpass(int order, double fc, double fs) {
     return sos;
 }
 
-// Low-pass → band-stop: s_lp = B s / (s² + Ω0²), Ω0² = Ω1 Ω2, B = Ω2 − Ω1. Each prototype pole
+// Low-pass → band-stop: s_lp = B s / (s² + Ω0²), B = Ω2 − Ω1. Each prototype pole
 // p maps to the two roots of p s² − B s + p Ω0² = 0, and contributes zeros s = ±iΩ0.
 Sos butterworthBandstop(int order, double f1, double f2, double fs) {
     Sos sos;
     if (order < 1 || !(f1 > 0.0) || !(f2 > f1) || !(f2 < fs / 2.0)) return sos;
+    // The notch (Ω0) sits exactly at the digital centre frequency; the width B is that of the
+    // pre-warped edges, so the −3 dB edges land within a fraction of a hertz of f1 and f2.
     const double W1 = prewarp(f1, fs), W2 = prewarp(f2, fs);
-    const double W0 = std::sqrt(W1 * W2), B = W2 - W1;
+    const double W0 = prewarp(0.5 * (f1 + f2), fs), B = W2 - W1;
     const cd zz = bilinear(cd(0.0, W0), fs);  // digital zero on the unit circle
     const double b1 = -2.0 * zz.real();
     auto roots = [&](cd p) {
@@ -304,7 +306,7 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
         const size_t n = static_cast<size_t>(std::floor((t.back() - t.front()) / c.dt_s)) + 1;
         const std::vector<double> told = t;
         for (size_t k = 1; k < io::kSignalCount; ++k)
-            if (!r.signals[k].empty()) r.signals[k] = resampleLinear(told, r.signals[k], told.front(), c.dt_s, n);
+            if (!r.channels[k].empty()) r.channels[k] = resampleLinear(told, r.channels[k], told.front(), c.dt_s, n);
         t.resize(n);
         for (size_t i = 0; i < n; ++i) t[i] = told.front() + static_cast<double>(i) * c.dt_s;
         c.resampled = true;
@@ -332,7 +334,7 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
     }
     if (!sos.empty())
         for (size_t k = 1; k < io::kSignalCount; ++k)
-            if (!r.signals[k].empty()) r.signals[k] = filtfilt(sos, r.signals[k]);
+            if (!r.channels[k].empty()) r.channels[k] = filtfilt(sos, r.channels[k]);
     // 3. derived signals
     auto sgd = [&](const std::vector<double>& y) { return savitzkyGolay(y, c.dt_s, s.sgHalfWindow, s.sgOrder, 1); };
     if (!r.has(Signal::Slip) && r.has(Signal::StageDisp)) {

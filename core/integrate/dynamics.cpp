@@ -44,11 +44,25 @@ Sample toSample(const DynamicsModel& m, const DynState& s) {
     return o;
 }
 
+ParamIssues DynamicsModel::validate() const {
+    ParamIssues out = rig.validate();
+    const ParamIssues lawIssues = std::visit([](const auto& l) { return l.params.validate(); }, law);
+    out.insert(out.end(), lawIssues.begin(), lawIssues.end());
+    if (!(std::isfinite(dt_s) && dt_s > 0.0)) out.push_back({"dt", dt_s, "> 0"});
+    return out;
+}
+
 RunResult simulateDynamics(const DynamicsModel& m, DynState& s, long steps, long outputEvery, bool recordStart,
                            const RunControl& ctl) {
     RunResult res;
+    if (const ParamIssues issues = m.validate(); !issues.empty()) {
+        res.status = RunStatus::Failed;
+        res.message = formatIssues(issues);
+        return res;
+    }
     if (outputEvery < 1) outputEvery = 1;
-    res.samples.reserve(static_cast<size_t>(steps / outputEvery + 2));
+    // Reserve what is cheap; long runs grow as they go (a cancelled run may never need it all).
+    res.samples.reserve(static_cast<size_t>(std::min<long>(steps / outputEvery + 2, 1L << 20)));
     if (recordStart) res.samples.push_back(toSample(m, s));
     long done = 0;
     const long chunk = std::max<long>(outputEvery, 1L << 14) / outputEvery * outputEvery;

@@ -59,6 +59,8 @@ struct DynamicsModel {
     static DynamicsModel fromParams(const SimParams& p);
     // State at rest at time t: x = v = 0, F = 0, α = 0, u = u(t).
     DynState initialState(double t = 0.0) const;
+    // Every invalid rig or law parameter or step (as SimParams::validate reports them).
+    ParamIssues validate() const;
 };
 
 struct StepReport {

@@ -1,5 +1,6 @@
 #include "prescribed.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <variant>
@@ -70,7 +71,7 @@ RunResult runPrescribed(const Law& law, double tNconst, const SlipHistory& h, in
                         LawState st) {
     RunResult res;
     const size_t n = h.t_s.size();
-    res.samples.reserve(n);
+    res.samples.reserve(std::min<size_t>(n, size_t{1} << 20));
     auto record = [&](size_t i, double slipRate, bool stuck) {
         Sample s;
         const double tN = h.normalForce_N.empty() ? tNconst : h.normalForce_N[i];

@@ -118,9 +118,9 @@ bool ColumnMapping::addUnits(const std::string& spec, std::string* error) {
         Quantity q;
         std::string why;
         const Dimension dim = info(s).dim;
-        if (!parseQuantity("1 " + v, q, &why, &dim) || !q.hasUnit) {
+        if (!parseQuantity("1 " + v, q, &why, &dim) || !q.hasUnit || !(q.dimension == dim)) {
             if (error)
-                *error = "--units '" + item + "': " + (why.empty() ? "not a unit" : why) + " (" + k + " expects " +
+                *error = "--units '" + item + "': " + (why.empty() ? "unit of the wrong dimension" : why) + " (" + k + " expects " +
                          dimensionString(dim) + ")";
             return false;
         }
@@ -180,7 +180,7 @@ bool loadRun(const std::string& path, const ColumnMapping& mapping, Run& out, Da
         const auto sc = mapping.scaleToSI.find(si.s);
         if (sc != mapping.scaleToSI.end())
             for (double& x : v) x *= sc->second;
-        run.signals[static_cast<size_t>(si.s)] = std::move(v);
+        run.channels[static_cast<size_t>(si.s)] = std::move(v);
         run.sourceColumn[si.s] = col;
     }
     const std::vector<double>& t = run[Signal::Time];

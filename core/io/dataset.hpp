@@ -57,17 +57,17 @@ struct DatasetError {
 struct Run {
     std::string file;                                // path as given
     std::vector<std::string> comments;               // '#' lines of the file
-    std::array<std::vector<double>, kSignalCount> signals;  // SI; empty when absent
+    std::array<std::vector<double>, kSignalCount> channels;  // SI; empty when absent
     std::map<Signal, std::string> sourceColumn;      // which column each signal came from
     // Known settings, SI, keyed like SimParams keys: k, A, f, tN, m, c, … and where each came
     // from ("column", "manifest", "run-set").
     std::map<std::string, double> settings;
     std::map<std::string, std::string> settingSource;
 
-    bool has(Signal s) const { return !signals[static_cast<size_t>(s)].empty(); }
-    const std::vector<double>& operator[](Signal s) const { return signals[static_cast<size_t>(s)]; }
-    std::vector<double>& operator[](Signal s) { return signals[static_cast<size_t>(s)]; }
-    size_t size() const { return signals[0].size(); }
+    bool has(Signal s) const { return !channels[static_cast<size_t>(s)].empty(); }
+    const std::vector<double>& operator[](Signal s) const { return channels[static_cast<size_t>(s)]; }
+    std::vector<double>& operator[](Signal s) { return channels[static_cast<size_t>(s)]; }
+    size_t size() const { return channels[0].size(); }
     bool setting(const std::string& key, double& value) const;  // false if unknown
     std::string name() const;                                   // file name without folders
 };

@@ -1,5 +1,6 @@
 #include "run_csv.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 
@@ -37,8 +38,10 @@ std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector
         if (p.law == LawKind::Coulomb && key == "epsT") v = p.coulomb.epsT_N_per_m;
         std::string unit;
         paramUnit(key, unit);
-        std::snprintf(buf, sizeof buf, "# %s = %.17g%s%s\n", key.c_str(), v, unit.empty() ? "" : " ", unit.c_str());
-        s += buf;
+        // Shortest text that reads back to the same double.
+        char num[64];
+        const auto res = std::to_chars(num, num + sizeof num, v);
+        s += "# " + key + " = " + std::string(num, res.ptr) + (unit.empty() ? "" : " ") + unit + "\n";
     }
     for (const std::string& c : extraComments) s += "# " + c + "\n";
     const auto& cols = runCsvColumns();

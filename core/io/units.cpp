@@ -236,14 +236,23 @@ std::string dimensionString(const Dimension& d) {
         if (e == 0) return;
         if (!s.empty()) s += ' ';
         s += sym;
-        if (std::abs(e) != 1) s += "^" + std::to_string(std::abs(e));
+        if (std::abs(e) != 1) {
+            s += '^';
+            s += std::to_string(std::abs(e));
+        }
     };
     add(d.mass > 0 ? num : den, "kg", d.mass);
     add(d.length > 0 ? num : den, "m", d.length);
     add(d.time > 0 ? num : den, "s", d.time);
     if (num.empty() && den.empty()) return "1";
-    if (num.empty()) num = "1";
-    return den.empty() ? num : num + "/" + (den.find(' ') != std::string::npos ? "(" + den + ")" : den);
+    if (den.empty()) return num;
+    std::string out = num.empty() ? std::string(1, '1') : num;
+    out += '/';
+    const bool group = den.find(' ') != std::string::npos;
+    if (group) out += '(';
+    out += den;
+    if (group) out += ')';
+    return out;
 }
 
 bool parseQuantity(const std::string& textIn, Quantity& out, std::string* error, const Dimension* expected) {

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -50,11 +51,11 @@ private slots:
     // A ε_T|k − mω²|/(k + ε_T − mω²) stays below μ t_N, so the slider follows the stage up to the
     // ε_T pre-slip: every step sticks and x is the closed-form forced response above. Just above
     // the threshold the same start slips.
-    // Tolerance on x: 2e-4 X. Newmark (trapezoidal) has no amplitude error for undamped linear
-    // systems and a relative period error (ωh)²/12: 3e-8 at the forcing frequency, i.e. ~4e-6
-    // phase over 20 cycles; the start is the continuous (not the discrete) forced solution, which
-    // excites the stuck mode Ω = sqrt((k+ε_T)/m) with a relative amplitude O((Ωh)²/12) ≈ 2e-4
-    // (Ωh = 0.046 at dt = T/10 000).
+    // Tolerance on x: 1e-5 X. Newmark (trapezoidal) has no amplitude error for undamped linear
+    // systems and a relative period error (ωh)²/12 = 3e-8 at the forcing frequency (~4e-6 rad
+    // of phase over 20 cycles); the start on the continuous forced solution excites the stuck
+    // mode sqrt((k+ε_T)/m) only by the O(h²) mismatch of the discrete one (seen: ~5e-10 X).
+    // Any slip would shift x by far more.
     void coulombPermanentStick_data() {
         QTest::addColumn<double>("k");
         QTest::addColumn<double>("fraction");  // A / A_threshold
@@ -75,10 +76,10 @@ private slots:
         p.rig.damping_Ns_per_m = 0.0;
         const double w = p.drive.omega();
         const double muTN = p.coulomb.mu * p.rig.normalForce_N;
-        // The criterion A |k − mω²| < μ t_N implies stick; our threshold is that with the
-        // series factor ε_T/(k + ε_T − mω²) (≈ 1 + 1e-3 here).
+        // The criterion A |k − mω²| < μ t_N is this threshold for ε_T ≫ |k − mω²|; ours
+        // carries the series factor (k + ε_T − mω²)/ε_T, within 1e-2 of 1 here.
         const double Ac = stickThreshold(p);
-        QVERIFY(Ac >= muTN / std::abs(k - p.rig.mass_kg * w * w));
+        QVERIFY(relDiff(Ac, muTN / std::abs(k - p.rig.mass_kg * w * w)) < 1e-2);
         p.drive.amplitude_m = fraction * Ac;
         const StuckResponse ref = stuckResponse(p);
 
@@ -96,7 +97,7 @@ private slots:
             if (st.stuck) maxErrF = std::max(maxErrF, std::abs(st.law.force_N - p.coulomb.epsT_N_per_m * (st.u - st.x)));
         };
         const StepReport rep = advance(model, s, steps, obs);
-        QCOMPARE(rep.status, RunStatus::Ok);
+        QVERIFY2(rep.status == RunStatus::Ok, rep.message.c_str());
         QCOMPARE(rep.stepsDone, steps);
         qInfo("A = %.4g mm (%.2f A_c), %ld of %ld steps stuck, max|F| = %.6g N (mu tN = %.6g), max|x - X sin wt| = %.3g X",
               p.drive.amplitude_m * 1e3, fraction, stuckSteps, steps, maxF, muTN, maxErrX / ref.X);
@@ -104,7 +105,7 @@ private slots:
             QCOMPARE(stuckSteps, steps);
             QVERIFY(maxF < muTN);
             QVERIFY(std::abs(maxF - ref.Famp) < 1e-3 * ref.Famp);
-            QVERIFY2(maxErrX < 2e-4 * ref.X, qPrintable(QString("x error %1 of X").arg(maxErrX / ref.X)));
+            QVERIFY2(maxErrX < 1e-5 * ref.X, qPrintable(QString("x error %1 of X").arg(maxErrX / ref.X)));
             // Up to round-off in the accumulated F_{n+1} = F_n + ε Δg.
             QVERIFY(maxErrF < 1e-9 * muTN * steps);
         } else {
@@ -115,9 +116,10 @@ private slots:
 
     // The two couplings of the slider to the law (condensed scalar return map vs monolithic
     // Newton with the consistent tangent) solve the same discrete equations, so they agree to
-    // the solvers' tolerances. The Fig. 20 set at A = 1 mm is period-1 (MODEL.md), so nothing
-    // amplifies differences exponentially; 1e-6 of the amplitude over 5 cycles covers the local
-    // solve's 1e-7 relative stopping rule.
+    // the solvers' tolerances: x to ~1e-13 relative (1e-16 m, i.e. 1e-10 N through ε_T) and the
+    // local residual to 1e-13 (|F_tr| + t_N). The Fig. 20 set at A = 1 mm is period-1
+    // (MODEL.md), so nothing amplifies differences exponentially over 5 cycles; we allow 1e-8 of
+    // the amplitude in x and 1e-8 t_N in F (seen: ~3e-11 and ~1e-9 N).
     void couplingsAgree_data() {
         QTest::addColumn<bool>("coulomb");
         QTest::addRow("rate-state") << false;
@@ -146,8 +148,8 @@ private slots:
         }
         qInfo("condensed vs Newton: max|dx| = %.3g of amplitude, max|dF| = %.3g N", errX / ampX, errF);
         QVERIFY(slipping > 0);
-        QVERIFY(errX <= 1e-6 * ampX);
-        QVERIFY(errF <= 1e-6 * p.rig.normalForce_N);
+        QVERIFY(errX <= 1e-8 * ampX);
+        QVERIFY(errF <= 1e-8 * p.rig.normalForce_N);
     }
 
     // Bookkeeping of a run from SimParams: transient discarded, `cycles` recorded at the output
@@ -212,7 +214,7 @@ private slots:
         QFETCH(bool, prescribed);
         SimParams p = fig20Params();
         p.setup = prescribed ? SetupKind::Prescribed : SetupKind::Dynamics;
-        p.cycles = 1e5;  // minutes of work: only the cancel can end it in time
+        p.cycles = 2e4;  // minutes of work: only the cancel can end it in time
         std::atomic<bool> cancel{false};
         double lastProgress = 0;
         bool progressOk = true;
@@ -228,10 +230,11 @@ private slots:
         });
         const RunResult r = simulate(p, ctl);
         canceller.join();
-        QCOMPARE(r.status, RunStatus::Cancelled);
+        QVERIFY2(r.status == RunStatus::Cancelled, r.message.c_str());
         QVERIFY(!r.message.empty());
         QVERIFY(!r.samples.empty());
-        QVERIFY(r.samples.size() < size_t(1e5 * 100));
+        QVERIFY(r.samples.size() < size_t(2e4 * 100));
+        if (!prescribed) QVERIFY(lastProgress > 0);  // reported every block of steps
         QVERIFY(allFinite(r.samples));
         const double dtOut = p.drive.period() / 100;
         for (size_t i = 1; i < r.samples.size(); ++i)
@@ -241,21 +244,27 @@ private slots:
               r.samples.back().t_s / p.drive.period(), lastProgress);
     }
 
-    // A forced numerical failure (a non-finite or absurd value bypassing validation) ends the run
-    // with Failed and a message naming the step, the time and the quantity; the samples so far
-    // contain no NaN.
+    // A forced numerical failure ends the run with Failed and a message naming the step, the
+    // time and the quantity; the samples so far contain no NaN. Non-finite or zero values put
+    // into a model directly (bypassing SimParams::validate()) are refused up front, naming the
+    // key; values that pass validation but cannot be integrated (a stage table that turns NaN,
+    // an absurd amplitude that overflows the force) fail at the step where it happens.
     void failureIsAStatus_data() {
         QTest::addColumn<QString>("what");
-        QTest::addRow("mass NaN") << "m";
-        QTest::addRow("epsT inf") << "epsT";
-        QTest::addRow("Dc zero") << "Dc";
-        QTest::addRow("tN NaN") << "tN";
-        QTest::addRow("dt zero") << "dt";
-        QTest::addRow("stage NaN after a while") << "stage";
+        QTest::addColumn<QString>("key");  // expected key of an up-front refusal, "" for a step failure
+        QTest::addRow("mass NaN") << "m" << "m";
+        QTest::addRow("epsT inf") << "epsT" << "epsT";
+        QTest::addRow("Dc zero") << "Dc" << "Dc";
+        QTest::addRow("tN NaN") << "tN" << "tN";
+        QTest::addRow("dt zero") << "dt" << "dt";
+        QTest::addRow("stage NaN after a while") << "stage" << "";
+        QTest::addRow("amplitude 1e300 m") << "A" << "";
     }
     void failureIsAStatus() {
         QFETCH(QString, what);
+        QFETCH(QString, key);
         SimParams p = fig20Params();
+        if (what == "A") p.drive.amplitude_m = 1e300;  // valid (finite, ≥ 0), but F = ε_T Δg overflows
         DynamicsModel m = DynamicsModel::fromParams(p);
         RateStateParams rp = p.rateState;
         if (what == "m") m.rig.mass_kg = std::nan("");
@@ -275,19 +284,27 @@ private slots:
         }
         DynState s = m.initialState(0.0);
         const RunResult r = simulateDynamics(m, s, 30000, 10, true);
-        QCOMPARE(r.status, RunStatus::Failed);
+        QVERIFY2(r.status == RunStatus::Failed, r.message.c_str());
         qInfo("%s: %s", qPrintable(what), r.message.c_str());
+        QVERIFY(allFinite(r.samples));
+        if (!key.isEmpty()) {
+            QVERIFY2(r.message.rfind(key.toStdString() + " = ", 0) == 0, r.message.c_str());
+            QVERIFY(r.samples.empty());
+            return;
+        }
         QVERIFY2(contains(r.message, "step "), r.message.c_str());
         QVERIFY2(contains(r.message, "t = "), r.message.c_str());
-        // The quantity, named in parentheses: (x), (F) or (slip increment).
-        QVERIFY2(contains(r.message, "(x)") || contains(r.message, "(F)") || contains(r.message, "(slip increment)"),
+        // The quantity, named in parentheses: (x), (F), (alpha) or (slip increment).
+        QVERIFY2(contains(r.message, "(x)") || contains(r.message, "(F)") || contains(r.message, "(alpha)") ||
+                     contains(r.message, "(slip increment)"),
                  r.message.c_str());
-        QVERIFY(allFinite(r.samples));
         if (what == "stage") {
+            // u is NaN from t = 0.1 s, so interpolated NaN after the last good sample at
+            // 0.099 s: the first bad step is 0.099 s / (T/10 000) + 1 = 2971.
             QVERIFY(r.samples.size() > 5);  // it ran until the stage went bad
-            QVERIFY(contains(r.message, "step 100 ") || contains(r.message, "step 99 ") ||
-                    contains(r.message, "step 101 "));
+            QVERIFY2(contains(r.message, "step 2971 "), r.message.c_str());
         }
+        if (what == "A") QVERIFY2(contains(r.message, "step 1 "), r.message.c_str());
     }
 
     // Failure messages number steps from stepOffset.
@@ -296,7 +313,7 @@ private slots:
         m.rig.mass_kg = std::nan("");
         DynState s = m.initialState();
         const StepReport rep = advanceQuiet(m, s, 10, {});
-        QCOMPARE(rep.status, RunStatus::Failed);
+        QVERIFY2(rep.status == RunStatus::Failed, rep.message.c_str());
         QCOMPARE(rep.stepsDone, 0L);
         DynState s2 = m.initialState();
         const StepReport rep2 = advance(m, s2, 10, [](const DynState&) {}, {}, 1000);

@@ -1,0 +1,209 @@
+#include "report_html.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace stickslip::identify {
+
+std::string htmlEscape(const std::string& s) {
+    std::string o;
+    for (char c : s) {
+        switch (c) {
+            case '&': o += "&amp;"; break;
+            case '<': o += "&lt;"; break;
+            case '>': o += "&gt;"; break;
+            case '"': o += "&quot;"; break;
+            default: o += c;
+        }
+    }
+    return o;
+}
+
+namespace {
+
+std::string fmt(double v, const char* f = "%.4g") {
+    if (!std::isfinite(v)) return "&ndash;";
+    char b[64];
+    std::snprintf(b, sizeof b, f, v);
+    return b;
+}
+
+// 1–2–5 tick step covering `span` in about n ticks.
+double niceStep(double span, int n) {
+    const double raw = span / std::max(n, 1);
+    const double p = std::pow(10.0, std::floor(std::log10(raw)));
+    const double m = raw / p;
+    return (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10) * p;
+}
+
+}  // namespace
+
+std::string svgLinePlot(const std::vector<SvgSeries>& series, const std::string& title, const std::string& xLabel,
+                        const std::string& yLabel, int W, int H) {
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    for (const SvgSeries& s : series)
+        for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+            if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+            x0 = std::min(x0, s.x[i]); x1 = std::max(x1, s.x[i]);
+            y0 = std::min(y0, s.y[i]); y1 = std::max(y1, s.y[i]);
+        }
+    if (!(x1 > x0)) { x0 = 0; x1 = 1; }
+    if (!(y1 > y0)) { y0 -= 1; y1 += 1; }
+    const double pad = 0.05 * (y1 - y0);
+    y0 -= pad; y1 += pad;
+    const int L = 70, R = 15, T = 28, B = 42;
+    const double pw = W - L - R, ph = H - T - B;
+    auto X = [&](double v) { return L + (v - x0) / (x1 - x0) * pw; };
+    auto Y = [&](double v) { return T + (y1 - v) / (y1 - y0) * ph; };
+    std::ostringstream o;
+    o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W << " "
+      << H << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
+    o << "<rect x=\"" << L << "\" y=\"" << T << "\" width=\"" << pw << "\" height=\"" << ph
+      << "\" fill=\"#fff\" stroke=\"#888\"/>\n";
+    o << "<text x=\"" << W / 2 << "\" y=\"16\" text-anchor=\"middle\" font-size=\"13\">" << htmlEscape(title) << "</text>\n";
+    const double sx = niceStep(x1 - x0, 6), sy = niceStep(y1 - y0, 5);
+    for (double v = std::ceil(x0 / sx) * sx; v <= x1 + 1e-12 * sx; v += sx)
+        o << "<line x1=\"" << X(v) << "\" x2=\"" << X(v) << "\" y1=\"" << T << "\" y2=\"" << T + ph
+          << "\" stroke=\"#eee\"/><text x=\"" << X(v) << "\" y=\"" << T + ph + 14 << "\" text-anchor=\"middle\">" << fmt(v, "%.3g")
+          << "</text>\n";
+    for (double v = std::ceil(y0 / sy) * sy; v <= y1 + 1e-12 * sy; v += sy)
+        o << "<line x1=\"" << L << "\" x2=\"" << L + pw << "\" y1=\"" << Y(v) << "\" y2=\"" << Y(v)
+          << "\" stroke=\"#eee\"/><text x=\"" << L - 4 << "\" y=\"" << Y(v) + 4 << "\" text-anchor=\"end\">" << fmt(v, "%.3g")
+          << "</text>\n";
+    o << "<text x=\"" << L + pw / 2 << "\" y=\"" << H - 6 << "\" text-anchor=\"middle\">" << htmlEscape(xLabel) << "</text>\n";
+    o << "<text transform=\"translate(14," << T + ph / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << htmlEscape(yLabel)
+      << "</text>\n";
+    int li = 0;
+    for (const SvgSeries& s : series) {
+        std::string d;
+        bool pen = false;
+        char b[64];
+        for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+            if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) { pen = false; continue; }
+            std::snprintf(b, sizeof b, "%c%.1f %.1f", pen ? 'L' : 'M', X(s.x[i]), Y(s.y[i]));
+            d += b;
+            pen = true;
+        }
+        o << "<path d=\"" << d << "\" fill=\"none\" stroke=\"" << s.color << "\" stroke-width=\"1\"/>\n";
+        o << "<rect x=\"" << L + 8 << "\" y=\"" << T + 6 + 14 * li << "\" width=\"12\" height=\"3\" fill=\"" << s.color
+          << "\"/><text x=\"" << L + 24 << "\" y=\"" << T + 11 + 14 * li << "\">" << htmlEscape(s.label) << "</text>\n";
+        ++li;
+    }
+    o << "</svg>\n";
+    return o.str();
+}
+
+std::string renderHtmlReport(const IdentifyResult& r) {
+    std::ostringstream o;
+    o << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>StickSlip Lab: identify report</title>\n"
+         "<style>body{font-family:sans-serif;max-width:1000px;margin:1em auto;color:#222}"
+         "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}"
+         "th{background:#f3f3f3}td.l{text-align:left}.warn{color:#a40}</style></head><body>\n";
+    o << "<h1>Missing-effect identification</h1>\n<p>Set-up: " << htmlEscape(r.setup) << ". " << r.fits << " fits, "
+      << fmt(r.wallTime_s, "%.1f") << " s.</p>\n";
+    o << "<h2>Result</h2><p>Effects added: <b>";
+    if (r.effectsAdded.empty()) o << "none";
+    for (size_t i = 0; i < r.effectsAdded.size(); ++i) o << (i ? ", " : "") << htmlEscape(r.effectsAdded[i].name);
+    o << "</b>.</p>\n";
+    if (r.unexplained)
+        o << "<p class=\"warn\">Unexplained structure remains: " << htmlEscape(r.unexplainedReason) << "</p>\n";
+    else
+        o << "<p>The final residual passes the whiteness test (Ljung&ndash;Box p = " << fmt(r.diagnosticsAfter.whiteness.pValue)
+          << ").</p>\n";
+    o << "<table><tr><th></th><th>fit NRMSE</th><th>held-out NRMSE</th></tr>"
+      << "<tr><td class=l>before (baseline)</td><td>" << fmt(r.before.fitNrmse) << "</td><td>" << fmt(r.before.validationNrmse)
+      << "</td></tr><tr><td class=l>after</td><td>" << fmt(r.after.fitNrmse) << "</td><td>" << fmt(r.after.validationNrmse)
+      << "</td></tr></table>\n";
+    o << "<h3>Per run</h3><table><tr><th>run</th><th>role</th><th>NRMSE before</th><th>held-out before</th>"
+         "<th>NRMSE after</th><th>held-out after</th></tr>\n";
+    for (size_t i = 0; i < r.before.runs.size(); ++i) {
+        const RunError& b = r.before.runs[i];
+        const RunError* a = i < r.after.runs.size() ? &r.after.runs[i] : nullptr;
+        o << "<tr><td class=l>" << htmlEscape(b.file) << "</td><td class=l>" << b.role << "</td><td>" << fmt(b.nrmse) << "</td><td>"
+          << fmt(b.heldOutNrmse) << "</td><td>" << (a ? fmt(a->nrmse) : "") << "</td><td>" << (a ? fmt(a->heldOutNrmse) : "")
+          << "</td></tr>\n";
+    }
+    o << "</table>\n<h3>Effects added</h3><table><tr><th>effect</th><th>parameter</th><th>value</th><th>std. error</th>"
+         "<th>&Delta;BIC</th><th>pointed to by (r before)</th></tr>\n";
+    for (const AddedEffect& e : r.effectsAdded) {
+        std::string ptr;
+        for (const auto& c : e.pointedBy) ptr += c.signal + " " + fmt(c.correlation, "%.3f") + "; ";
+        for (const ParamEstimate& p : e.params)
+            o << "<tr><td class=l>" << htmlEscape(e.name) << "</td><td class=l>" << htmlEscape(p.name) << "</td><td>" << fmt(p.value)
+              << "</td><td>" << fmt(p.stderr_) << "</td><td>" << fmt(e.deltaBic, "%.1f") << "</td><td class=l>" << htmlEscape(ptr)
+              << "</td></tr>\n";
+    }
+    o << "</table>\n<h3>Candidates</h3><table><tr><th>effect</th><th>round</th><th>&Delta;BIC</th><th>fit NRMSE</th>"
+         "<th>verdict</th></tr>\n";
+    for (const CandidateScore& c : r.candidates)
+        o << "<tr><td class=l>" << htmlEscape(c.name) << "</td><td>" << c.round << "</td><td>"
+          << (c.applicable ? fmt(c.deltaBic, "%.1f") : "&ndash;") << "</td><td>" << (c.applicable ? fmt(c.fitNrmse) : "&ndash;")
+          << "</td><td class=l>" << (c.accepted ? "added" : htmlEscape(c.reason)) << "</td></tr>\n";
+    o << "</table>\n<h3>Parameters</h3><table><tr><th>parameter</th><th>baseline</th><th>&plusmn;</th></tr>\n";
+    for (const ParamEstimate& p : r.baseline)
+        o << "<tr><td class=l>" << htmlEscape(p.name) << "</td><td>" << fmt(p.value) << "</td><td>" << fmt(p.stderr_) << "</td></tr>\n";
+    o << "</table><table><tr><th>parameter</th><th>final</th><th>&plusmn;</th></tr>\n";
+    for (const ParamEstimate& p : r.final)
+        o << "<tr><td class=l>" << htmlEscape(p.name) << "</td><td>" << fmt(p.value) << "</td><td>" << fmt(p.stderr_) << "</td></tr>\n";
+    o << "</table>\n<h2>Residual diagnostics</h2><table><tr><th>signal</th><th>r before</th><th>r after</th></tr>\n";
+    for (size_t i = 0; i < r.diagnosticsBefore.correlations.size(); ++i)
+        o << "<tr><td class=l>" << r.diagnosticsBefore.correlations[i].signal << "</td><td>"
+          << fmt(r.diagnosticsBefore.correlations[i].correlation, "%.3f") << "</td><td>"
+          << (i < r.diagnosticsAfter.correlations.size() ? fmt(r.diagnosticsAfter.correlations[i].correlation, "%.3f") : "")
+          << "</td></tr>\n";
+    o << "</table><p>Ljung&ndash;Box p before " << fmt(r.diagnosticsBefore.whiteness.pValue) << ", after "
+      << fmt(r.diagnosticsAfter.whiteness.pValue) << ".</p>\n";
+    {
+        std::vector<SvgSeries> acf;
+        for (const auto* d : {&r.diagnosticsBefore, &r.diagnosticsAfter}) {
+            SvgSeries s{{}, d->whiteness.acf, d == &r.diagnosticsBefore ? "#c33" : "#36c", d == &r.diagnosticsBefore ? "before" : "after"};
+            for (size_t k = 0; k < s.y.size(); ++k) s.x.push_back(static_cast<double>(k * d->whiteness.decimation));
+            acf.push_back(s);
+        }
+        o << svgLinePlot(acf, "Residual autocorrelation", "lag [samples]", "ACF");
+        std::vector<SvgSeries> sp;
+        for (const auto* d : {&r.diagnosticsBefore, &r.diagnosticsAfter}) {
+            SvgSeries s{{}, {}, d == &r.diagnosticsBefore ? "#c33" : "#36c", d == &r.diagnosticsBefore ? "before" : "after"};
+            for (size_t k = 1; k < d->spectrum.frequency_Hz.size() && d->spectrum.frequency_Hz[k] <= 150; ++k) {
+                s.x.push_back(d->spectrum.frequency_Hz[k]);
+                s.y.push_back(std::log10(std::max(d->spectrum.power[k], 1e-30)));
+            }
+            sp.push_back(s);
+        }
+        o << svgLinePlot(sp, "Residual spectrum (longest run); forcing harmonics at " +
+                                 (r.diagnosticsBefore.spectrum.harmonics_Hz.empty() ? std::string("?")
+                                                                                    : fmt(r.diagnosticsBefore.spectrum.harmonics_Hz[0], "%.3g")) +
+                                 " Hz multiples",
+                         "frequency [Hz]", "log10 power");
+    }
+    o << "<h2>Runs</h2>\n";
+    for (const RunTrace& t : r.traces) {
+        // At most ~3 forcing periods or 1500 samples for readability.
+        const size_t n = std::min<size_t>(t.t_s.size(), 1500);
+        SvgSeries m{{}, {}, "#000", "measured"}, b{{}, {}, "#c33", "before"}, a{{}, {}, "#36c", "after"};
+        SvgSeries rb{{}, {}, "#c33", "residual before"}, ra{{}, {}, "#36c", "residual after"};
+        SvgSeries lm{{}, {}, "#000", "measured"}, lb{{}, {}, "#c33", "before"}, la{{}, {}, "#36c", "after"};
+        for (size_t i = 0; i < n; ++i) {
+            const double x = t.t_s[i];
+            m.x.push_back(x); m.y.push_back(t.measured_N[i]);
+            b.x.push_back(x); b.y.push_back(t.before_N[i]);
+            a.x.push_back(x); a.y.push_back(t.after_N[i]);
+            rb.x.push_back(x); rb.y.push_back(t.measured_N[i] - t.before_N[i]);
+            ra.x.push_back(x); ra.y.push_back(t.measured_N[i] - t.after_N[i]);
+            const double v = t.relVel_mps[i];
+            lm.x.push_back(v); lm.y.push_back(t.measured_N[i]);
+            lb.x.push_back(v); lb.y.push_back(t.before_N[i]);
+            la.x.push_back(v); la.y.push_back(t.after_N[i]);
+        }
+        o << "<h3>" << htmlEscape(t.file) << "</h3>\n";
+        o << svgLinePlot({m, b, a}, "Force: measured vs predicted", "t [s]", "F [N]");
+        o << svgLinePlot({rb, ra}, "Residual", "t [s]", "F measured - predicted [N]", 640, 220);
+        o << svgLinePlot({lm, lb, la}, "Loops: force vs slip velocity", "V [m/s]", "F [N]", 420, 320);
+    }
+    o << "</body></html>\n";
+    return o.str();
+}
+
+}  // namespace stickslip::identify

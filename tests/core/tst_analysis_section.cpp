@@ -1,0 +1,187 @@
+// Poincaré section, classification, stick threshold and Lyapunov exponent on the model.
+#include <QtTest>
+
+#include <atomic>
+#include <cmath>
+#include <complex>
+#include <numbers>
+
+#include "core/analysis/classify.hpp"
+#include "core/analysis/lyapunov.hpp"
+#include "core/analysis/poincare.hpp"
+#include "core/analysis/stick_threshold.hpp"
+#include "core/presets.hpp"
+
+using namespace stickslip;
+constexpr double kPi = std::numbers::pi;
+
+namespace {
+SimParams preset(const char* name) {
+    Preset p;
+    if (!findPreset(name, p)) qFatal("no preset %s", name);
+    return p.params;
+}
+PoincareSection handMade(const std::vector<double>& x, const std::vector<double>& v, long slipSteps) {
+    PoincareSection s;
+    s.slider_m = x;
+    s.relVel_mps = v;
+    s.slipSteps = slipSteps;
+    return s;
+}
+}  // namespace
+
+class TstAnalysisSection : public QObject {
+    Q_OBJECT
+private slots:
+    void sectionSamplesOncePerPeriodAtThePhase() {
+        const SimParams p = preset("default");  // A = 1 mm, f = 3 Hz
+        PoincareOptions o;
+        o.stepsPerPeriod = 2000;
+        o.settleCycles = 5;
+        o.cycles = 12;
+        std::vector<double> progress;
+        RunControl ctl;
+        ctl.progress = [&](double f) { progress.push_back(f); };
+        const PoincareSection s = poincareSection(p, o, ctl);
+        QVERIFY2(s.ok(), s.message.c_str());
+        QCOMPARE(s.size(), std::size_t(12));
+        QCOMPARE(s.ratio.size(), std::size_t(12));
+        const double T = 1.0 / 3.0;
+        QCOMPARE(s.period_s, T);
+        for (std::size_t i = 0; i < s.size(); ++i) QVERIFY(std::abs(s.t_s[i] - (5 + i + 1) * T) < 1e-9);
+        QVERIFY(s.stickFraction > 0 && s.stickFraction < 1);
+        QVERIFY(s.slipSteps > 0);
+        QVERIFY(s.maxRelVel_mps > 0);
+        for (double V : s.relVel_mps) QVERIFY(std::abs(V) <= s.maxRelVel_mps);
+        for (double r : s.ratio) QVERIFY(std::abs(r) < 0.6);
+        QVERIFY(!progress.empty());
+        for (std::size_t i = 1; i < progress.size(); ++i) QVERIFY(progress[i] >= progress[i - 1]);
+        QCOMPARE(progress.back(), 1.0);
+        // Phase π/2: a quarter period later.
+        o.phase_rad = kPi / 2;
+        const PoincareSection q = poincareSection(p, o);
+        QVERIFY(q.ok());
+        QVERIFY(std::abs(q.t_s[0] - (6.25) * T) < 1e-9);
+        QCOMPARE(stepsPerPeriodFor(p, 0), 10000L);  // default dt = T/10 000 at 3 Hz
+        QCOMPARE(stepsPerPeriodFor(p, 123), 123L);
+        QCOMPARE(poincareModel(p, 1000).dt_s, T / 1000);
+    }
+    void sectionReportsBadInputAndCancel() {
+        SimParams p = preset("default");
+        p.rig.normalForce_N = -1;
+        PoincareOptions o;
+        o.cycles = 0;
+        const PoincareSection s = poincareSection(p, o);
+        QVERIFY(s.status == RunStatus::Failed);
+        QVERIFY(s.message.find("tN") != std::string::npos);
+        QVERIFY(s.message.find("cycles") != std::string::npos);
+        std::atomic<bool> cancel{true};
+        RunControl ctl;
+        ctl.cancel = &cancel;
+        PoincareOptions ok;
+        ok.stepsPerPeriod = 10000;
+        const PoincareSection c = poincareSection(preset("default"), ok, ctl);
+        QVERIFY(c.status == RunStatus::Cancelled);
+    }
+    void stickThresholdMatchesClosedFormAndSimulation() {
+        for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+            SimParams p = preset("fig20");  // ε_T = 1.1e4 N/m
+            p.law = law;
+            const double w = 2 * kPi * p.drive.frequency_Hz;
+            const double Z = std::abs(std::complex<double>(p.rig.stiffness_N_per_m - p.rig.mass_kg * w * w,
+                                                           p.rig.damping_Ns_per_m * w));
+            const double closed = 0.25 * 6.2 * (1 / Z + 1 / 1.1e4);
+            const double As = stickThresholdAmplitude(p);
+            QVERIFY2(std::abs(As - closed) < 1e-6 * closed, qPrintable(QString::number(As)));
+            QVERIFY(As > 0.32e-3 && As < 0.34e-3);  // the paper's 0.33 mm
+            PoincareOptions o;
+            o.stepsPerPeriod = 2000;
+            o.settleCycles = 40;
+            o.cycles = 10;
+            setParam(p, "A", 0.9 * As);
+            const PoincareSection below = poincareSection(p, o);
+            QVERIFY(below.ok());
+            QVERIFY(classifyMotion(below, classifyScales(p)).motion == MotionClass::Stick);
+            setParam(p, "A", 1.1 * As);
+            const PoincareSection above = poincareSection(p, o);
+            QVERIFY(above.ok());
+            QVERIFY(above.slipSteps > 0);
+            QVERIFY(classifyMotion(above, classifyScales(p)).motion != MotionClass::Stick);
+        }
+    }
+    void classificationWithStatedTolerance() {
+        const ClassifyScales sc{1e-3, 1e-2};
+        ClassifyOptions o;  // relTol 1e-4: 1e-7 m, 1e-6 m/s
+        std::vector<double> x, v;
+        for (int i = 0; i < 48; ++i) {
+            x.push_back(1e-4 * (i % 3));
+            v.push_back(1e-3 * ((i % 3) == 1));
+        }
+        Classification c = classifyMotion(handMade(x, v, 10), sc, o);
+        QVERIFY(c.motion == MotionClass::Periodic);
+        QCOMPARE(c.period, 3);
+        // Within tolerance (0.5 relTol) still period 3; beyond (3 relTol) not periodic ≤ 16.
+        auto xn = x;
+        for (std::size_t i = 0; i < xn.size(); i += 2) xn[i] += 0.5e-7;
+        QCOMPARE(classifyMotion(handMade(xn, v, 10), sc, o).period, 3);
+        for (std::size_t i = 0; i < xn.size(); i += 2) xn[i] += 3e-7;
+        c = classifyMotion(handMade(xn, v, 10), sc, o);
+        QVERIFY(c.motion == MotionClass::Periodic);  // the perturbation itself has period 2·3 = 6
+        QCOMPARE(c.period, 6);
+        std::vector<double> irr;
+        double z = 0.3;
+        for (int i = 0; i < 48; ++i) { z = 3.9 * z * (1 - z); irr.push_back(1e-3 * z); }
+        c = classifyMotion(handMade(irr, v, 10), sc, o);
+        QVERIFY(c.motion == MotionClass::Irregular);
+        QCOMPARE(c.period, 0);
+        QVERIFY(c.bestMismatch > 1);
+        c = classifyMotion(handMade(x, v, 0), sc, o);
+        QVERIFY(c.motion == MotionClass::Stick);
+        QCOMPARE(QString(toString(MotionClass::Irregular)), QString("irregular"));
+        ClassifyOptions bad;
+        bad.maxPeriod = 0;
+        bad.relTol = 2;
+        QCOMPARE(bad.validate().size(), std::size_t(2));
+        const ClassifyScales s = classifyScales(preset("default"));
+        QCOMPARE(s.x_m, 1e-3);
+        QVERIFY(std::abs(s.v_mps - 1e-3 * 2 * kPi * 3) < 1e-12);
+    }
+    void separationHelpers() {
+        const SimParams p = preset("default");
+        const SeparationScales sc = separationScales(p);
+        QVERIFY(std::abs(sc.x_m - 0.25 * 6.2 / 8446) < 1e-12);
+        QVERIFY(std::abs(sc.force_N - 1.55) < 1e-12);
+        DynState s;
+        s.x = 1e-4; s.v = 0.01; s.law.force_N = 0.3; s.law.alpha = -0.2;
+        DynState q = perturbedState(s, p.rig, sc, 1e-6);
+        QVERIFY(std::abs(stateSeparation(s, q, sc) - 1e-6) < 1e-12);
+        // Newmark consistency: m δa + c δv + k δx = 0.
+        QVERIFY(std::abs(p.rig.mass_kg * (q.a - s.a) + p.rig.damping_Ns_per_m * (q.v - s.v) +
+                         p.rig.stiffness_N_per_m * (q.x - s.x)) < 1e-12);
+        q.law.force_N += 1e-3;
+        const double before = stateSeparation(s, q, sc);
+        QCOMPARE(renormalise(s, q, sc, 1e-7), before);
+        QVERIFY(std::abs(stateSeparation(s, q, sc) - 1e-7) < 1e-13);
+    }
+    void lyapunovNegativeOnAPeriodOneOrbit() {
+        const SimParams p = preset("default");  // A = 1 mm, ε_T = 1e6: period-1
+        LyapunovOptions o;
+        o.stepsPerPeriod = 2000;
+        o.settleCycles = 30;
+        o.cycles = 30;
+        const LyapunovResult r = largestLyapunov(p, o);
+        QVERIFY2(r.ok(), r.message.c_str());
+        QCOMPARE(r.logGrowth.size(), std::size_t(30));
+        QVERIFY2(r.perCycle < -0.05, qPrintable(QString::number(r.perCycle)));
+        QVERIFY(std::abs(r.perSecond - r.perCycle * 3.0) < 1e-9);
+        LyapunovOptions bad;
+        bad.cycles = 0;
+        bad.d0 = 0;
+        const LyapunovResult b = largestLyapunov(p, bad);
+        QVERIFY(b.status == RunStatus::Failed);
+        QVERIFY(b.message.find("d0") != std::string::npos);
+    }
+};
+
+QTEST_GUILESS_MAIN(TstAnalysisSection)
+#include "tst_analysis_section.moc"

@@ -1,0 +1,137 @@
+// Import of measured runs: default column names, mapping and units, manifest and --run-set
+// settings, t_N from columns, and bad files reported with file:line:column, nothing half-loaded.
+#include <QtTest>
+
+#include <cmath>
+#include <fstream>
+
+#include "core/io/dataset.hpp"
+
+using namespace stickslip::io;
+
+namespace {
+std::string writeTemp(const QString& name, const std::string& text) {
+    const QString path = QDir::temp().filePath(name);
+    std::ofstream(path.toStdString()) << text;
+    return path.toStdString();
+}
+const std::string kShared = STICKSLIP_SHARED_DIR;
+}  // namespace
+
+class TstDataset : public QObject {
+    Q_OBJECT
+private slots:
+    void realDamperRunLoadsWithDefaults() {
+        Run r;
+        DatasetError err;
+        const std::string f = kShared + "/data/real/friction-damper/1Hz_30lb_1in.csv";
+        QVERIFY2(loadRun(f, ColumnMapping{}, r, err), err.what().c_str());
+        QCOMPARE(r.size(), size_t(7174 - 5));
+        QVERIFY(r.has(Signal::StageDisp) && r.has(Signal::StageVel) && r.has(Signal::Friction) && r.has(Signal::Tension));
+        QVERIFY(!r.has(Signal::SliderDisp));
+        QCOMPARE(r.comments.size(), size_t(4));
+        QVERIFY(std::abs(r[Signal::Time][1] - 1.0 / 1024) < 1e-6);
+        QCOMPARE(r.name(), std::string("1Hz_30lb_1in.csv"));
+    }
+
+    void datasetTakesManifestColumnsAndRunSetInPriority() {
+        const std::string dir = kShared + "/data/synthetic/D05/";
+        DatasetOptions o;
+        o.manifestPath = dir + "manifest.json";
+        o.runSets = {"run_02.csv:k=1600", "run_02.csv:m=510g"};
+        Dataset ds;
+        DatasetError err;
+        QVERIFY2(loadDataset({dir + "run_01.csv", dir + "run_02.csv"}, o, ds, err), err.what().c_str());
+        QCOMPARE(ds.runs.size(), size_t(2));
+        double k = 0, m = 0, tN = 0, A = 0;
+        QVERIFY(ds.runs[0].setting("k", k) && k == 8446.0);
+        QVERIFY(ds.runs[0].setting("A", A) && std::abs(A - 0.0005317551) < 1e-6);
+        QVERIFY(ds.runs[0].setting("m", m) && m == 0.53);   // nominal mass from the manifest
+        QCOMPARE(ds.runs[0].settingSource.at("k"), std::string("manifest"));
+        // t_N from the measured normal force column beats the manifest's nominal value.
+        QVERIFY(ds.runs[0].setting("tN", tN));
+        QVERIFY(std::abs(tN - 11.6394) < 0.05);
+        QVERIFY(ds.runs[0].settingSource.at("tN").find("column") != std::string::npos);
+        // --run-set beats both, with units.
+        QVERIFY(ds.runs[1].setting("k", k) && k == 1600.0);
+        QVERIFY(ds.runs[1].setting("m", m) && std::abs(m - 0.51) < 1e-12);
+        QCOMPARE(ds.runs[1].settingSource.at("k"), std::string("run-set"));
+    }
+
+    void mappingAndUnitsConvertToSI() {
+        const std::string f = writeTemp("h5_map.csv", "# mm and kN\nt;pos;Fx\n0;1.5;0.002\n0.001;2.0;0.003\n0.002;2.5;0.004\n"
+                                                      "0.003;3;0\n0.004;3;0\n0.005;3;0\n0.006;3;0\n0.007;3;0\n");
+        ColumnMapping m;
+        std::string why;
+        QVERIFY(m.addColumns("time=t,stage_disp=pos", &why));
+        QVERIFY(m.addColumns("friction=Fx", &why));
+        QVERIFY2(m.addUnits("stage_disp=mm,friction=kN", &why), why.c_str());
+        Run r;
+        DatasetError err;
+        QVERIFY2(loadRun(f, m, r, err), err.what().c_str());
+        QVERIFY(std::abs(r[Signal::StageDisp][0] - 1.5e-3) < 1e-15);
+        QVERIFY(std::abs(r[Signal::Friction][2] - 4.0) < 1e-12);
+        // A unit of the wrong dimension and an unknown signal are refused with a reason.
+        QVERIFY(!m.addUnits("friction=mm", &why));
+        QVERIFY(why.find("friction") != std::string::npos);
+        QVERIFY(!m.addColumns("force=Fx", &why));
+        QVERIFY(why.find("unknown signal") != std::string::npos);
+    }
+
+    void badFilesNameFileLineColumn() {
+        const std::string f = writeTemp("h5_bad.csv", "time_s,friction_force_N\n0,1\n0.001,2\n0.002,abc\n");
+        Run r;
+        r.file = "untouched";
+        DatasetError err;
+        QVERIFY(!loadRun(f, ColumnMapping{}, r, err));
+        QCOMPARE(r.file, std::string("untouched"));
+        QCOMPARE(err.line, 4L);
+        QCOMPARE(err.column, 7L);  // character column of the bad cell
+        QVERIFY(err.what().find("h5_bad.csv:4:7") != std::string::npos);
+        // time going backwards
+        const std::string g = writeTemp("h5_time.csv", "time_s,x\n0,1\n0.1,1\n0.2,1\n0.15,1\n0.3,1\n0.4,1\n0.5,1\n0.6,1\n0.7,1\n");
+        QVERIFY(!loadRun(g, ColumnMapping{}, r, err));
+        QCOMPARE(err.line, 5L);
+        QVERIFY(err.message.find("time does not increase") != std::string::npos);
+        // a mapped column that is not there
+        ColumnMapping m;
+        std::string why;
+        m.addColumns("friction=Fx", &why);
+        QVERIFY(!loadRun(kShared + "/data/synthetic/D05/run_01.csv", m, r, err));
+        QVERIFY(err.message.find("Fx") != std::string::npos);
+        // a whole dataset with one bad file loads nothing
+        Dataset ds;
+        ds.manifestPath = "keep";
+        QVERIFY(!loadDataset({kShared + "/data/synthetic/D05/run_01.csv", f}, DatasetOptions{}, ds, err));
+        QCOMPARE(ds.manifestPath, std::string("keep"));
+        QVERIFY(ds.runs.empty());
+    }
+
+    void runSetErrors() {
+        Dataset ds;
+        DatasetError err;
+        QVERIFY(loadDataset({kShared + "/data/real/friction-damper/1Hz_30lb_1in.csv"}, DatasetOptions{}, ds, err));
+        double tN = 0;
+        QVERIFY(ds.runs[0].setting("tN", tN));  // from the band tension column
+        QVERIFY(std::abs(tN - 133.4466) < 1e-3);
+        std::string why;
+        QVERIFY(!applyRunSet(ds, "nosuch.csv:tN=3", &why));
+        QVERIFY(why.find("nosuch.csv") != std::string::npos);
+        QVERIFY(!applyRunSet(ds, "1Hz_30lb_1in.csv:tN=3Hz", &why));
+        QVERIFY(!applyRunSet(ds, "1Hz_30lb_1in.csv-tN", &why));
+        QVERIFY(applyRunSet(ds, "1Hz_30lb_1in.csv:tN=30lbf", &why));
+        QVERIFY(ds.runs[0].setting("tN", tN) && std::abs(tN - 133.4466) < 0.01);
+    }
+
+    void manifestErrorsAreLocated() {
+        const std::string f = writeTemp("h5_manifest.json", "{\n \"runs\": [\n  {\"file\": \"a.csv\",, }\n ]\n}\n");
+        Manifest m;
+        DatasetError err;
+        QVERIFY(!readManifest(f, m, err));
+        QCOMPARE(err.line, 3L);
+        QVERIFY(err.column > 1);
+    }
+};
+
+QTEST_GUILESS_MAIN(TstDataset)
+#include "tst_dataset.moc"

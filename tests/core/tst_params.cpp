@@ -1,0 +1,280 @@
+// Parameters: every invalid value of every field is rejected with a message naming the key, the
+// value and the allowed range; validate() returns all issues; keys round-trip; defaults are the
+// paper's Fig. 20 set.
+#include <QtTest>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <set>
+
+#include "core/integrate/simulate.hpp"
+#include "core/params.hpp"
+#include "core/presets.hpp"
+#include "physics_helpers.hpp"
+
+using namespace stickslip;
+using namespace stickslip::testing;
+
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+
+// One field of one struct: its key, how to set it on a default struct, one out-of-range finite
+// value, and the validator of the struct it lives in.
+struct FieldCase {
+    const char* key;
+    double badValue;  // finite and out of range
+    std::function<ParamIssues(double)> validateWith;
+};
+
+template <class S>
+std::function<ParamIssues(double)> with(double S::*field) {
+    return [field](double v) {
+        S s;
+        s.*field = v;
+        return s.validate();
+    };
+}
+
+std::vector<FieldCase> fieldCases() {
+    return {
+        {"A", -1.5e-3, with(&DriveParams::amplitude_m)},
+        {"f", 0.0, with(&DriveParams::frequency_Hz)},
+        {"tN", -2.0, with(&RigParams::normalForce_N)},
+        {"k", -100.0, with(&RigParams::stiffness_N_per_m)},
+        {"m", 0.0, with(&RigParams::mass_kg)},
+        {"c", -0.25, with(&RigParams::damping_Ns_per_m)},
+        {"mu", -0.1, with(&RateStateParams::mu)},
+        {"eta", 0.0, with(&RateStateParams::eta_s_per_m)},
+        {"Dc", -2e-05, with(&RateStateParams::Dc_m)},
+        {"C1", -0.5, with(&RateStateParams::C1)},
+        {"r", 0.0, with(&RateStateParams::r)},
+        {"vc", -0.1, with(&RateStateParams::vc_mps)},
+        {"epsT", 0.0, with(&RateStateParams::epsT_N_per_m)},
+        {"mu", -0.3, with(&CoulombParams::mu)},
+        {"epsT", -1e6, with(&CoulombParams::epsT_N_per_m)},
+        {"dt", 0.0, with(&IntegrationParams::dt_s)},
+        {"output_every", -0.001, with(&IntegrationParams::outputInterval_s)},
+    };
+}
+
+// The issue's message names the key, shows the value and states the allowed range.
+void checkIssue(const ParamIssue& i, const std::string& key, double value) {
+    const std::string msg = i.message();
+    QCOMPARE(QString::fromStdString(i.field), QString::fromStdString(key));
+    QVERIFY(std::isnan(value) ? std::isnan(i.value) : i.value == value);
+    QVERIFY2(msg.rfind(key + " = ", 0) == 0, msg.c_str());
+    QVERIFY2(!i.allowed.empty() && contains(msg, i.allowed), msg.c_str());
+    QVERIFY2(contains(i.allowed, ">") || contains(i.allowed, "<") || contains(i.allowed, "finite"), msg.c_str());
+    std::ostringstream v;
+    v.precision(6);
+    v << value;
+    QVERIFY2(contains(msg, "= " + v.str()), qPrintable(QString::fromStdString(msg + " (value " + v.str() + ")")));
+}
+
+}  // namespace
+
+class TstParams : public QObject {
+    Q_OBJECT
+private slots:
+    // Defaults are the paper's Fig. 20 set (MODEL.md) and valid.
+    void defaultsAreFig20() {
+        const SimParams p;
+        QCOMPARE(p.rig.normalForce_N, 6.2);
+        QCOMPARE(p.rig.stiffness_N_per_m, 8446.0);
+        QCOMPARE(p.rig.mass_kg, 0.53);
+        QCOMPARE(p.drive.frequency_Hz, 3.0);
+        QCOMPARE(p.rateState.mu, 0.25);
+        QCOMPARE(p.rateState.C1, 0.25);
+        QCOMPARE(p.rateState.r, 1.0);
+        QCOMPARE(p.rateState.eta_s_per_m, 0.6);
+        QCOMPARE(p.rateState.Dc_m, 20e-6);
+        QCOMPARE(p.rateState.vc_mps, 0.1);
+        QCOMPARE(p.rateState.C2(), 10.0);
+        QCOMPARE(p.coulomb.mu, 0.25);
+        // 0.5 % of critical damping.
+        QVERIFY(std::abs(p.rig.dampingRatio() - 0.005) < 1e-3 * 0.005);
+        QVERIFY2(p.validate().empty(), formatIssues(p.validate()).c_str());
+    }
+
+    // Each field, set alone to an out-of-range value, to NaN, to +inf and to −inf, gives exactly
+    // one issue from its struct's validate(), naming it with value and allowed range.
+    void everyFieldRejected() {
+        for (const FieldCase& c : fieldCases()) {
+            for (double v : {c.badValue, kNaN, kInf, -kInf}) {
+                const ParamIssues issues = c.validateWith(v);
+                QVERIFY2(issues.size() == 1, qPrintable(QString("%1 = %2: %3 issues").arg(c.key).arg(v).arg(issues.size())));
+                checkIssue(issues[0], c.key, v);
+            }
+        }
+        // phase may be any finite number, but not NaN or inf.
+        for (double v : {kNaN, kInf}) {
+            DriveParams d;
+            d.phase_rad = v;
+            const ParamIssues issues = d.validate();
+            QCOMPARE(issues.size(), size_t(1));
+            checkIssue(issues[0], "phase", v);
+        }
+        DriveParams d;
+        d.phase_rad = -7.0;
+        QVERIFY(d.validate().empty());
+    }
+
+    // Boundary values that are allowed: A = 0 (no drive), k = 0 (no spring), c = 0, μ = 0, C1 = 0.
+    void boundariesAccepted() {
+        SimParams p;
+        for (const char* key : {"A", "k", "c", "mu", "C1", "transient"}) QVERIFY(setParam(p, key, 0.0));
+        QVERIFY2(p.validate().empty(), formatIssues(p.validate()).c_str());
+        p.law = LawKind::Coulomb;
+        QVERIFY2(p.validate().empty(), formatIssues(p.validate()).c_str());
+    }
+
+    // validate() returns ALL issues, not the first: every key bad at once → one issue per key.
+    void allIssuesReturned() {
+        SimParams p;
+        const std::vector<std::pair<const char*, double>> bad = {
+            {"A", -1}, {"f", -3}, {"phase", kNaN}, {"tN", 0}, {"k", -1}, {"m", -1}, {"c", -1}, {"mu", -1},
+            {"eta", -1}, {"Dc", 0}, {"C1", -1}, {"r", -1}, {"vc", 0}, {"epsT", -5}, {"dt", -1},
+            {"output_every", 0}, {"cycles", 0}, {"transient", -2}};
+        for (const auto& [k, v] : bad) QVERIFY(setParam(p, k, v));
+        const ParamIssues issues = p.validate();
+        std::set<std::string> named;
+        for (const auto& i : issues) named.insert(i.field);
+        for (const auto& [k, v] : bad) QVERIFY2(named.count(k) == 1, k);
+        QCOMPARE(issues.size(), bad.size());
+        // One line per issue, each naming its key.
+        const QStringList lines = QString::fromStdString(formatIssues(issues)).split('\n');
+        QCOMPARE(lines.size(), int(issues.size()));
+        for (size_t i = 0; i < issues.size(); ++i) QVERIFY(lines[int(i)].startsWith(QString::fromStdString(issues[i].field)));
+        // The Coulomb law's fields are checked when it is selected.
+        p.law = LawKind::Coulomb;
+        std::set<std::string> namedC;
+        for (const auto& i : p.validate()) namedC.insert(i.field);
+        QVERIFY(namedC.count("mu") && namedC.count("epsT") && !namedC.count("eta") && !namedC.count("Dc"));
+    }
+
+    // Through SimParams and its keys: each key, alone bad, is named by SimParams::validate()
+    // (the run-level checks cycles, transient and dt ≤ T/8 included), and simulate() refuses
+    // to run, in both set-ups, with that message.
+    void everyKeyThroughSimParams() {
+        const std::vector<std::pair<const char*, double>> bad = {
+            {"A", -1e-3}, {"f", 0}, {"phase", kInf}, {"tN", -6.2}, {"k", -1}, {"m", 0}, {"c", -1}, {"mu", -0.25},
+            {"eta", 0}, {"Dc", 0}, {"C1", -1}, {"r", 0}, {"vc", 0}, {"epsT", 0}, {"dt", 0}, {"output_every", 0},
+            {"cycles", 0}, {"transient", -1}};
+        QCOMPARE(bad.size(), paramKeys().size());
+        for (const auto& [key, v] : bad) {
+            for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+                SimParams p = fig20Params();
+                p.law = law;
+                QVERIFY(setParam(p, key, v));
+                const std::string k = key;
+                const bool lawOnly = (k == "eta" || k == "Dc" || k == "C1" || k == "r" || k == "vc");
+                const ParamIssues issues = p.validate();
+                if (law == LawKind::Coulomb && lawOnly) {
+                    QVERIFY(issues.empty());  // rate-state fields do not concern the Coulomb model
+                    continue;
+                }
+                QVERIFY2(issues.size() == 1, qPrintable(QString("%1: %2").arg(key).arg(QString::fromStdString(formatIssues(issues)))));
+                checkIssue(issues[0], key, v);
+                for (SetupKind setup : {SetupKind::Dynamics, SetupKind::Prescribed}) {
+                    p.setup = setup;
+                    const RunResult r = simulate(p);
+                    QVERIFY(r.status == RunStatus::Failed);
+                    QVERIFY(r.samples.empty());
+                    QVERIFY2(r.message.rfind(k + " = ", 0) == 0, r.message.c_str());
+                }
+            }
+        }
+        // The step must resolve the forcing: dt > T/8 is refused, naming dt and the bound.
+        SimParams p = fig20Params();
+        p.integration.dt_s = 0.05;  // T/8 = 0.0417 s at 3 Hz
+        const ParamIssues issues = p.validate();
+        QCOMPARE(issues.size(), size_t(1));
+        checkIssue(issues[0], "dt", 0.05);
+        QVERIFY(contains(issues[0].allowed, "T/8"));
+    }
+
+    // setParam/getParam round-trip every key; μ and ε_T set both laws; unknown keys are refused
+    // with the list of known ones.
+    void keysRoundTrip() {
+        const std::vector<std::string> keys = paramKeys();
+        const std::set<std::string> expected = {"A", "f", "phase", "tN", "k", "m", "c", "mu", "eta", "Dc",
+                                                "C1", "r", "vc", "epsT", "dt", "output_every", "cycles", "transient"};
+        QCOMPARE(std::set<std::string>(keys.begin(), keys.end()), expected);
+        SimParams p;
+        double x = 1.25;
+        for (const auto& k : keys) {
+            QVERIFY(setParam(p, k, x));
+            double back = 0;
+            QVERIFY(getParam(p, k, back));
+            QCOMPARE(back, x);
+            x += 0.5;
+        }
+        QCOMPARE(p.coulomb.mu, p.rateState.mu);
+        QCOMPARE(p.coulomb.epsT_N_per_m, p.rateState.epsT_N_per_m);
+        std::string err;
+        QVERIFY(!setParam(p, "speed", 1.0, &err));
+        QVERIFY2(contains(err, "speed") && contains(err, "epsT") && contains(err, "tN"), err.c_str());
+        double v = 0;
+        QVERIFY(!getParam(p, "speed", v));
+    }
+
+    // Derived quantities.
+    void derived() {
+        DriveParams d;
+        d.frequency_Hz = 4.0;
+        QVERIFY(std::abs(d.omega() - 8.0 * std::numbers::pi) < 1e-12);
+        QCOMPARE(d.period(), 0.25);
+        RigParams r;
+        r.stiffness_N_per_m = 400;
+        r.mass_kg = 1;
+        r.damping_Ns_per_m = 4;
+        QCOMPARE(r.naturalFrequency_rad_s(), 20.0);
+        QCOMPARE(r.dampingRatio(), 0.1);
+        QCOMPARE(dampingFromRatio(0.1, 400, 1), 4.0);
+        r.stiffness_N_per_m = 0;
+        QCOMPARE(r.dampingRatio(), 0.0);  // no spring: no critical damping to refer to
+        IntegrationParams i;
+        i.dt_s = 1e-4;
+        i.outputInterval_s = 5e-4;
+        QCOMPARE(i.outputEvery(), 5L);
+        i.outputInterval_s = 5.4e-4;  // rounded to a multiple of dt
+        QCOMPARE(i.outputEvery(), 5L);
+        i.outputInterval_s = 1e-5;  // finer than dt: every step
+        QCOMPARE(i.outputEvery(), 1L);
+        i.outputInterval_s = -1;
+        QCOMPARE(i.outputEvery(), 1L);
+        LawKind l;
+        QVERIFY(parseLawKind(toString(LawKind::Coulomb), l) && l == LawKind::Coulomb);
+        QVERIFY(parseLawKind(toString(LawKind::RateState), l) && l == LawKind::RateState);
+        QVERIFY(!parseLawKind("lugre", l));
+        SetupKind s;
+        QVERIFY(parseSetupKind(toString(SetupKind::Prescribed), s) && s == SetupKind::Prescribed);
+        QVERIFY(parseSetupKind(toString(SetupKind::Dynamics), s) && s == SetupKind::Dynamics);
+        QVERIFY(!parseSetupKind("static", s));
+        QVERIFY(formatIssues({}).empty());
+    }
+
+    // Every built-in preset is valid, named as documented and found by name.
+    void presetsValid() {
+        const auto all = builtinPresets();
+        std::set<std::string> names;
+        for (const Preset& p : all) {
+            names.insert(p.name);
+            QVERIFY2(p.params.validate().empty(), (p.name + ": " + formatIssues(p.params.validate())).c_str());
+            QVERIFY(!p.description.empty());
+            Preset q;
+            QVERIFY(findPreset(p.name, q));
+            QCOMPARE(QString::fromStdString(q.name), QString::fromStdString(p.name));
+        }
+        for (const char* n : {"default", "fig16", "fig17", "fig18", "fig19", "fig20", "fig22", "fig23"})
+            QVERIFY2(names.count(n) == 1, n);
+        Preset q;
+        QVERIFY(!findPreset("fig99", q));
+    }
+};
+
+QTEST_GUILESS_MAIN(TstParams)
+#include "tst_params.moc"

@@ -1,0 +1,233 @@
+// The real main window, offscreen: a slider change reaches the plots (compared with a direct
+// core run), presets switch, failures are reported in words, every view exports to PNG, SVG,
+// PDF and CSV, a measured CSV is overlaid by column name, and a session round-trips.
+#include <QDockWidget>
+#include <QFile>
+#include <QSignalSpy>
+#include <QSlider>
+#include <QTemporaryDir>
+#include <QtTest>
+#include <qwt_plot_curve.h>
+#include <cmath>
+
+#include "core/integrate/simulate.hpp"
+#include "main_window.hpp"
+#include "parameter_panel.hpp"
+#include "param_specs.hpp"
+#include "session.hpp"
+#include "simulation_controller.hpp"
+#include "view_set.hpp"
+#include "widgets/friction_loop_plot.hpp"
+#include "widgets/time_series_plot.hpp"
+
+using namespace stickslip;
+using namespace stickslip::gui;
+
+namespace {
+
+// Waits (generously: CI also runs this under ASan) for a shown run whose parameters satisfy pred.
+template <class Pred>
+bool waitForRun(MainWindow& w, Pred pred, RunOutcome* out = nullptr, int timeout_ms = 120000) {
+    QSignalSpy spy(&w, &MainWindow::runShown);
+    QElapsedTimer clock;
+    clock.start();
+    while (clock.elapsed() < timeout_ms) {
+        for (const auto& args : spy) {
+            const auto o = args.at(0).value<RunOutcome>();
+            if (pred(o.settings)) {
+                if (out) *out = o;
+                return true;
+            }
+        }
+        spy.clear();
+        spy.wait(200);
+    }
+    return false;
+}
+
+QByteArray head(const QString& path, int n) {
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly)) return {};
+    return f.read(n);
+}
+
+}  // namespace
+
+class TstAppWindow : public QObject {
+    Q_OBJECT
+    MainWindow* w = nullptr;
+private slots:
+    void initTestCase() {
+        w = new MainWindow(/*restoreSettings=*/false);
+        w->show();
+        QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return s.preset == "fig20"; }));
+        QVERIFY(w->statusText().contains("run "));
+    }
+    void cleanupTestCase() { delete w; }
+
+    void sliderChangeReachesThePlots() {
+        // A: 1 mm → 2.5 mm (position 250 of the 0–10 mm slider).
+        w->panel()->slider("A")->setValue(250);
+        RunOutcome o;
+        QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return std::abs(s.params.drive.amplitude_m - 2.5e-3) < 1e-12; }, &o));
+        QCOMPARE(w->panel()->settings().params.drive.amplitude_m, o.settings.params.drive.amplitude_m);
+        // The same run straight from the core.
+        const RunResult direct = simulate(w->panel()->settings().params);
+        QVERIFY(direct.ok());
+        QwtPlotCurve* x = w->views()->timeSeries()->curve("rate-state: slider x");
+        QwtPlotCurve* u = w->views()->timeSeries()->curve("rate-state: stage u");
+        QVERIFY(x && u);
+        QCOMPARE(x->dataSize(), direct.samples.size());
+        double maxU = 0;
+        for (size_t i = 0; i < direct.samples.size(); i += 97) {
+            QCOMPARE(x->sample(i).x(), direct.samples[i].t_s);
+            QVERIFY(std::abs(x->sample(i).y() - 1e3 * direct.samples[i].slider_m) <= 1e-9);
+        }
+        for (size_t i = 0; i < u->dataSize(); ++i) maxU = std::max(maxU, std::abs(u->sample(i).y()));
+        QVERIFY2(std::abs(maxU - 2.5) < 1e-3, qPrintable(QString::number(maxU)));   // the stage shows the new A in mm
+        // The loop plot got the same run: one loop per complete cycle (19 or 20 of the 20).
+        const auto& marks = w->views()->frictionLoop()->loopMarks(LawKind::RateState);
+        QVERIFY(marks.size() >= 19 && marks.size() <= 20);
+    }
+
+    void presetSwitch() {
+        w->panel()->loadPreset("fig16");   // prescribed slip, 5 cycles
+        RunOutcome o;
+        QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return s.preset == "fig16"; }, &o));
+        QCOMPARE(o.settings.params.setup, SetupKind::Prescribed);
+        QCOMPARE(o.runs.size(), size_t(1));
+        QVERIFY(o.runs[0].run.ok());
+        // Block with prescribed slip: the slider is held (x ≡ 0), the stage moves ±1 mm.
+        QwtPlotCurve* x = w->views()->timeSeries()->curve("rate-state: slider x");
+        QVERIFY(x);
+        QCOMPARE(x->dataSize(), o.runs[0].run.samples.size());
+        for (size_t i = 0; i < x->dataSize(); ++i) QCOMPARE(x->sample(i).y(), 0.0);
+        // Both models overlaid: two sets of curves.
+        w->panel()->modelBox()->setCurrentIndex(w->panel()->modelBox()->findData(int(ModelChoice::Both)));
+        QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return s.model == ModelChoice::Both; }, &o));
+        QCOMPARE(o.runs.size(), size_t(2));
+        QVERIFY(w->views()->timeSeries()->curve("Coulomb: F/t_N"));
+        QVERIFY(w->views()->timeSeries()->curve("rate-state: F/t_N"));
+        // Coulomb saturates at μ: |F/t_N| ≤ μ (+ nothing: rate independent).
+        QwtPlotCurve* c = w->views()->timeSeries()->curve("Coulomb: F/t_N");
+        double maxRatio = 0;
+        for (size_t i = 0; i < c->dataSize(); ++i) maxRatio = std::max(maxRatio, std::abs(c->sample(i).y()));
+        QVERIFY(std::abs(maxRatio - o.settings.params.coulomb.mu) < 1e-6);
+        w->panel()->modelBox()->setCurrentIndex(w->panel()->modelBox()->findData(int(ModelChoice::RateState)));
+        w->panel()->loadPreset("fig20");
+        QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return s.preset == "fig20" && s.model == ModelChoice::RateState; }));
+        QVERIFY(!w->views()->timeSeries()->curve("Coulomb: F/t_N"));
+    }
+
+    void failureIsReportedInWords() {
+        ModelSettings bad = w->panel()->settings();
+        bad.params.rig.normalForce_N = -1.0;
+        w->panel()->setSettings(bad);
+        QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return s.params.rig.normalForce_N < 0; }));
+        QVERIFY2(w->statusText().contains("failed") && w->statusText().contains("tN = -1"), qPrintable(w->statusText()));
+        w->panel()->loadPreset("fig20");
+        QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return s.params.rig.normalForce_N > 0; }));
+        QVERIFY(!w->statusText().contains("failed"));
+    }
+
+    void exportEveryFormat() {
+        QTemporaryDir dir;
+        for (const auto& v : w->views()->views()) {
+            if (!v.plot) continue;
+            for (const char* ext : {"png", "svg", "pdf", "csv"}) {
+                const QString path = dir.filePath(v.id + "." + ext);
+                QString why;
+                QVERIFY2(v.plot->exportTo(path, &why), qPrintable(v.id + ": " + why));
+                const QByteArray h = head(path, 64);
+                if (QByteArray(ext) == "png") QVERIFY(h.startsWith("\x89PNG\r\n\x1a\n"));
+                if (QByteArray(ext) == "pdf") QVERIFY(h.startsWith("%PDF-"));
+                if (QByteArray(ext) == "svg") QVERIFY(h.contains("<?xml") || h.contains("<svg"));
+            }
+        }
+        // CSV values: the slider curve of the time series, in mm as displayed.
+        const QString csv = dir.filePath("timeseries.csv");
+        QFile f(csv);
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        const QStringList lines = QString::fromUtf8(f.readAll()).split('\n');
+        QwtPlotCurve* x = w->views()->timeSeries()->curve("rate-state: slider x");
+        int checked = 0;
+        size_t i = 0;
+        for (const QString& line : lines) {
+            if (!line.startsWith("rate-state: slider x,")) continue;
+            const QStringList cells = line.split(',');
+            QCOMPARE(cells.size(), 3);
+            QVERIFY(std::abs(cells[1].toDouble() - x->sample(i).x()) <= 1e-12 * (1 + std::abs(x->sample(i).x())));
+            QVERIFY(std::abs(cells[2].toDouble() - x->sample(i).y()) <= 1e-12 * (1 + std::abs(x->sample(i).y())));
+            ++i;
+            ++checked;
+        }
+        QCOMPARE(size_t(checked), x->dataSize());
+        // Unknown format: an error, and nothing written.
+        QString why;
+        QVERIFY(!w->views()->timeSeries()->exportTo(dir.filePath("x.bmp"), &why));
+        QVERIFY(!QFile::exists(dir.filePath("x.bmp")));
+    }
+
+    void measuredCsvOverlaidByColumnName() {
+        QTemporaryDir dir;
+        const QString path = dir.filePath("measured.csv");
+        QFile f(path);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("# synthetic\ntime_s,stage_disp_m,friction_force_N\n0,0,0\n0.1,0.001,1.55\n0.2,0,-1.55\n");
+        f.close();
+        QString why;
+        QVERIFY2(w->openMeasured(path, &why), qPrintable(why));
+        QwtPlotCurve* u = w->views()->timeSeries()->curve("measured: stage_disp_m");
+        QVERIFY(u);
+        QCOMPARE(u->dataSize(), size_t(3));
+        QCOMPARE(u->sample(1).y(), 1.0);   // mm on the displacement axis
+        QwtPlotCurve* r = w->views()->timeSeries()->curve("measured: friction_force_N / t_N");
+        QVERIFY(r);
+        QVERIFY(std::abs(r->sample(1).y() - 1.55 / 6.2) < 1e-12);   // F / t_N with the panel's t_N
+        // A bad file names file, line and column.
+        const QString bad = dir.filePath("bad.csv");
+        QFile b(bad);
+        QVERIFY(b.open(QIODevice::WriteOnly));
+        b.write("time_s,stage_disp_m\n0,0\n0.1,abc\n");
+        b.close();
+        QVERIFY(!w->openMeasured(bad, &why));
+        QVERIFY2(why.contains("bad.csv") && why.contains(":3:"), qPrintable(why));
+        QVERIFY(w->statusText().contains("bad.csv"));
+        w->views()->clearMeasured();
+        QVERIFY(!w->views()->timeSeries()->curve("measured: stage_disp_m"));
+        QVERIFY(w->views()->timeSeries()->curve("rate-state: slider x"));
+    }
+
+    void sessionSaveAndLoad() {
+        QTemporaryDir dir;
+        const QString path = dir.filePath("session.json");
+        w->panel()->spinBox("eta")->setValue(0.45);
+        w->panel()->modelBox()->setCurrentIndex(w->panel()->modelBox()->findData(int(ModelChoice::Both)));
+        w->dock("spectrum")->hide();
+        const ModelSettings saved = w->panel()->settings();
+        QString why;
+        QVERIFY2(w->saveSessionTo(path, &why), qPrintable(why));
+        w->panel()->loadPreset("fig23");
+        w->panel()->modelBox()->setCurrentIndex(w->panel()->modelBox()->findData(int(ModelChoice::Coulomb)));
+        w->dock("spectrum")->show();
+        QVERIFY2(w->loadSessionFrom(path, &why), qPrintable(why));
+        const ModelSettings back = w->panel()->settings();
+        for (const auto& k : paramKeys()) {
+            double a = 0, b = 0;
+            getParam(saved.params, k, a);
+            getParam(back.params, k, b);
+            QVERIFY2(a == b, k.c_str());
+        }
+        QCOMPARE(back.params.rateState.eta_s_per_m, 0.45);
+        QCOMPARE(back.model, ModelChoice::Both);
+        QVERIFY(w->dock("spectrum")->isHidden());
+        QVERIFY(!w->dock("timeseries")->isHidden());
+        // And the views follow the loaded parameters.
+        QVERIFY(waitForRun(*w, [](const ModelSettings& s) {
+            return s.params.rateState.eta_s_per_m == 0.45 && s.model == ModelChoice::Both;
+        }));
+    }
+};
+
+QTEST_MAIN(TstAppWindow)
+#include "tst_app_window.moc"

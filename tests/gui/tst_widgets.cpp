@@ -1,0 +1,502 @@
+// The plot widgets show exactly the data handed to them, mark friction-loop orientation
+// correctly, export PNG/SVG/PDF/CSV that read back, and the rig view drives a cursor.
+#include <qwt_matrix_raster_data.h>
+#include <qwt_plot.h>
+#include <qwt_plot_curve.h>
+#include <qwt_plot_panner.h>
+#include <qwt_plot_picker.h>
+#include <qwt_plot_spectrogram.h>
+#include <qwt_plot_zoomer.h>
+#include <qwt_scale_engine.h>
+#include <qwt_symbol.h>
+
+#include <QSignalSpy>
+#include <QTemporaryDir>
+#include <QtTest>
+#include <cmath>
+
+#include "core/integrate/simulate.hpp"
+#include "core/io/csv_table.hpp"
+#include "core/presets.hpp"
+#include "widgets/autocorrelation_plot.hpp"
+#include "widgets/bifurcation_plot.hpp"
+#include "widgets/friction_loop_plot.hpp"
+#include "widgets/periodicity_map_plot.hpp"
+#include "widgets/phase_portrait_plot.hpp"
+#include "widgets/plot_export.hpp"
+#include "widgets/poincare_plot.hpp"
+#include "widgets/rig_view.hpp"
+#include "widgets/spectrum_plot.hpp"
+#include "widgets/time_series_plot.hpp"
+
+using namespace stickslip;
+using namespace stickslip::widgets;
+
+namespace {
+
+// A short real run of the Fig. 20 set at A = 1 mm (3 cycles, T/2000 steps).
+SimParams shortParams(LawKind law) {
+    Preset p;
+    findPreset("fig20", p);
+    SimParams s = p.params;
+    s.law = law;
+    s.integration.dt_s = s.drive.period() / 2000.0;
+    s.integration.outputInterval_s = s.drive.period() / 200.0;
+    s.cycles = 3;
+    return s;
+}
+
+RunResult shortRun(LawKind law) { return simulate(shortParams(law)); }
+
+// A synthetic run whose (V, F/t_N) trace is an ellipse, traversed clockwise when cw.
+RunResult ellipseRun(bool cw, int cycles, double period, int perCycle) {
+    RunResult r;
+    const int n = cycles * perCycle + 1;
+    for (int i = 0; i < n; ++i) {
+        const double t = period * i / perCycle;
+        const double th = 2 * M_PI * t / period;
+        Sample s;
+        s.t_s = t;
+        s.relVel_mps = 0.05 * std::cos(th);
+        s.ratio = 0.25 + (cw ? -0.1 : 0.1) * std::sin(th);
+        r.samples.push_back(s);
+    }
+    return r;
+}
+
+QByteArray readAll(const QString& path) {
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly)) return {};
+    return f.readAll();
+}
+
+}  // namespace
+
+class TestWidgets : public QObject {
+    Q_OBJECT
+private slots:
+    void timeSeriesCurvesEqualSamples();
+    void timeSeriesCycleRangeAndChannels();
+    void twoModelsOverlaid();
+    void measuredOverlayByColumnName();
+    void navigationToolsExist();
+    void phasePortraitAndPoincare();
+    void loopOrientationMarksClockwise();
+    void loopOrientationMarksCounterClockwise();
+    void rateStateLoopsAreClockwise();
+    void bifurcationAppendsBranches();
+    void spectrumIsLogScaled();
+    void periodicityMapShowsClasses();
+    void exportEachFormat();
+    void exportMultiPanel();
+    void exportErrors();
+    void rigViewDrivesCursor();
+};
+
+void TestWidgets::timeSeriesCurvesEqualSamples() {
+    const RunResult run = shortRun(LawKind::RateState);
+    QVERIFY2(run.ok(), run.message.c_str());
+    QVERIFY(run.samples.size() > 100);
+    TimeSeriesPlot w;
+    w.setChannels(kAllChannels);
+    w.setRun(run, shortParams(LawKind::RateState).drive.period());
+    const struct {
+        const char* title;
+        double (*get)(const Sample&);
+        double scale;
+    } expected[] = {
+        {"rate-state: stage u", [](const Sample& s) { return s.stage_m; }, 1e3},
+        {"rate-state: slider x", [](const Sample& s) { return s.slider_m; }, 1e3},
+        {"rate-state: F/t_N", [](const Sample& s) { return s.ratio; }, 1.0},
+        {"rate-state: V", [](const Sample& s) { return s.relVel_mps; }, 1.0},
+        {"rate-state: alpha", [](const Sample& s) { return s.alpha; }, 1.0},
+    };
+    for (const auto& e : expected) {
+        QwtPlotCurve* c = w.curve(QString::fromLatin1(e.title));
+        QVERIFY2(c, e.title);
+        QCOMPARE(c->dataSize(), run.samples.size());
+        for (size_t i = 0; i < run.samples.size(); ++i) {
+            const QPointF p = c->sample(static_cast<int>(i));
+            QCOMPARE(p.x(), run.samples[i].t_s);
+            QCOMPARE(p.y(), e.get(run.samples[i]) * e.scale);
+        }
+    }
+    // Displacements on the left axis [mm], the rest on the right.
+    QCOMPARE(w.curve("rate-state: slider x")->yAxis(), int(QwtPlot::yLeft));
+    QCOMPARE(w.curve("rate-state: F/t_N")->yAxis(), int(QwtPlot::yRight));
+    QVERIFY(w.plot()->axisTitle(QwtPlot::yLeft).text().contains("[mm]"));
+    QVERIFY(w.plot()->axisTitle(QwtPlot::xBottom).text().contains("[s]"));
+}
+
+void TestWidgets::timeSeriesCycleRangeAndChannels() {
+    const RunResult run = shortRun(LawKind::RateState);
+    const double T = shortParams(LawKind::RateState).drive.period();
+    TimeSeriesPlot w;
+    w.setChannels(channelBit(Channel::Slider));
+    w.setRun(run, T);
+    QCOMPARE(w.curves().size(), 1);
+    w.setCycleRange(1.0, 2.0);
+    QwtPlotCurve* c = w.curve("rate-state: slider x");
+    QVERIFY(c);
+    QVERIFY(c->dataSize() > 10);
+    const double t0 = run.samples.front().t_s;
+    size_t inRange = 0;
+    for (const Sample& s : run.samples)
+        if (s.t_s >= t0 + T - 1e-12 && s.t_s < t0 + 2 * T - 1e-12) ++inRange;
+    QCOMPARE(c->dataSize(), inRange);
+    for (size_t i = 0; i < c->dataSize(); ++i) {
+        QVERIFY(c->sample(static_cast<int>(i)).x() >= t0 + T - 1e-9);
+        QVERIFY(c->sample(static_cast<int>(i)).x() < t0 + 2 * T);
+    }
+    // Only right-axis channels: they move to the left axis with their own title.
+    w.setChannels(channelBit(Channel::FrictionRatio));
+    QCOMPARE(w.curve("rate-state: F/t_N")->yAxis(), int(QwtPlot::yLeft));
+    QVERIFY(w.plot()->axisTitle(QwtPlot::yLeft).text().contains("F/t_N"));
+}
+
+void TestWidgets::twoModelsOverlaid() {
+    const RunResult rs = shortRun(LawKind::RateState);
+    const RunResult cl = shortRun(LawKind::Coulomb);
+    QVERIFY(cl.ok());
+    const double T = shortParams(LawKind::RateState).drive.period();
+    TimeSeriesPlot w;
+    w.setChannels(channelBit(Channel::Slider));
+    w.setRun(rs, T, LawKind::RateState);
+    w.setRun(cl, T, LawKind::Coulomb);
+    QwtPlotCurve* a = w.curve("rate-state: slider x");
+    QwtPlotCurve* b = w.curve("Coulomb: slider x");
+    QVERIFY(a && b);
+    QCOMPARE(a->pen().style(), Qt::SolidLine);
+    QCOMPARE(b->pen().style(), Qt::DashLine);
+    QCOMPARE(b->dataSize(), cl.samples.size());
+    QCOMPARE(b->sample(5).y(), cl.samples[5].slider_m * 1e3);
+    w.clearModel(LawKind::Coulomb);
+    QVERIFY(!w.curve("Coulomb: slider x"));
+    QVERIFY(w.curve("rate-state: slider x"));
+}
+
+void TestWidgets::measuredOverlayByColumnName() {
+    io::CsvTable table;
+    io::CsvError err;
+    QVERIFY(io::parseCsvTable("time_s,slider_m\n0,0.001\n0.01,0.002\n0.02,-0.0005\n", "measured.csv", table, err));
+    MeasuredSeries m;
+    QString why;
+    QVERIFY(!measuredFromTable(table, "time_s", "force_N", m, &why));
+    QVERIFY(why.contains("force_N"));
+    QVERIFY(why.contains("measured.csv"));
+    QVERIFY(measuredFromTable(table, "time_s", "slider_m", m, &why));
+    TimeSeriesPlot w;
+    w.setChannels(channelBit(Channel::Slider));
+    w.addMeasured(Channel::Slider, m);
+    QwtPlotCurve* c = w.curve("measured: slider_m");
+    QVERIFY(c);
+    QCOMPARE(c->dataSize(), size_t(3));
+    QCOMPARE(c->sample(1).x(), 0.01);
+    QCOMPARE(c->sample(1).y(), 2.0);     // mm
+    QCOMPARE(c->sample(2).y(), -0.5);
+
+    PhasePortraitPlot pp;   // base-class overlay: SI scaled like the axes (x in mm)
+    MeasuredSeries xv{"measured: x-V", {0.001, 0.002}, {0.01, 0.02}};
+    pp.addMeasured(xv);
+    QCOMPARE(pp.curve("measured: x-V")->sample(1), QPointF(2.0, 0.02));
+    pp.clearMeasured();
+    QVERIFY(!pp.curve("measured: x-V"));
+}
+
+void TestWidgets::navigationToolsExist() {
+    TimeSeriesPlot w;
+    w.setRun(shortRun(LawKind::RateState), 1.0 / 3.0);
+    QVERIFY(w.zoomer());
+    QVERIFY(w.panner());
+    QVERIFY(w.picker());
+    QVERIFY(w.zoomer()->isEnabled());
+    QCOMPARE(w.picker()->rubberBand(), QwtPicker::CrossRubberBand);
+    QCOMPARE(w.picker()->trackerMode(), QwtPicker::AlwaysOn);
+    // The zoom base spans the data (autoscaled).
+    const QRectF base = w.zoomer()->zoomBase();
+    const QRectF data = w.curve("rate-state: slider x")->boundingRect();
+    QVERIFY(base.left() <= data.left() + 1e-9 && base.right() >= data.right() - 1e-9);
+    QVERIFY(base.top() <= data.top() + 1e-9 && base.bottom() >= data.bottom() - 1e-9);
+}
+
+void TestWidgets::phasePortraitAndPoincare() {
+    const RunResult run = shortRun(LawKind::RateState);
+    PhasePortraitPlot pp;
+    pp.setRun(run);
+    QwtPlotCurve* c = pp.curve("rate-state: trajectory");
+    QVERIFY(c);
+    QCOMPARE(c->dataSize(), run.samples.size());
+    QCOMPARE(c->sample(17), QPointF(run.samples[17].slider_m * 1e3, run.samples[17].relVel_mps));
+
+    PoincarePlot poincare;
+    poincare.setSection(std::vector<double>{1e-3, 2e-3, 3e-3}, std::vector<double>{0.1, 0.2, 0.3}, LawKind::Coulomb);
+    QwtPlotCurve* s = poincare.curve("Coulomb: section");
+    QVERIFY(s);
+    QCOMPARE(s->style(), QwtPlotCurve::NoCurve);   // dots only
+    QCOMPARE(s->sample(2), QPointF(3.0, 0.3));
+}
+
+void TestWidgets::loopOrientationMarksClockwise() {
+    const double T = 0.5;
+    FrictionLoopPlot w;
+    w.setRun(ellipseRun(true, 3, T, 200), T);
+    const auto& marks = w.loopMarks(LawKind::RateState);
+    QCOMPARE(marks.size(), size_t(3));
+    for (const LoopMark& m : marks) {
+        QCOMPARE(m.orientation, -1);
+        QVERIFY(m.signedArea < 0);
+        // Ellipse area π a b with a = 0.05, b = 0.1.
+        QVERIFY(std::abs(std::abs(m.signedArea) - M_PI * 0.05 * 0.1) < 1e-3 * M_PI * 0.005);
+    }
+    QVERIFY(w.curve("rate-state: cycle 0 cw"));
+    QVERIFY(w.curve("rate-state: cycle 2 cw"));
+    QVERIFY(!w.curve("rate-state: cycle 0 ccw"));
+    QCOMPARE(w.curve("rate-state: cycle 1 cw")->pen().color(), QColor(31, 119, 180));
+}
+
+void TestWidgets::loopOrientationMarksCounterClockwise() {
+    const double T = 0.5;
+    FrictionLoopPlot w;
+    w.setRun(ellipseRun(false, 2, T, 100), T, LawKind::Coulomb);
+    const auto& marks = w.loopMarks(LawKind::Coulomb);
+    QCOMPARE(marks.size(), size_t(2));
+    for (const LoopMark& m : marks) QCOMPARE(m.orientation, +1);
+    QVERIFY(w.curve("Coulomb: cycle 1 ccw"));
+    QCOMPARE(w.curve("Coulomb: cycle 1 ccw")->pen().color(), QColor(214, 39, 40));
+    QVERIFY(w.loopMarks(LawKind::RateState).empty());
+}
+
+// MODEL.md fact 6: the rate-state law gives only clockwise F/t_N–V loops (prescribed slip, Fig. 17).
+void TestWidgets::rateStateLoopsAreClockwise() {
+    Preset p;
+    QVERIFY(findPreset("fig17", p));
+    SimParams s = p.params;
+    s.integration.dt_s = s.drive.period() / 4000.0;
+    s.cycles = 3;
+    const RunResult run = simulate(s);
+    QVERIFY2(run.ok(), run.message.c_str());
+    FrictionLoopPlot w;
+    w.setRun(run, s.drive.period());
+    const auto& marks = w.loopMarks(LawKind::RateState);
+    QVERIFY(marks.size() >= 2);
+    for (const LoopMark& m : marks) QVERIFY2(m.orientation <= 0, "a counter-clockwise rate-state loop");
+    QVERIFY(std::count_if(marks.begin(), marks.end(), [](const LoopMark& m) { return m.orientation < 0; }) >= 1);
+}
+
+void TestWidgets::bifurcationAppendsBranches() {
+    BifurcationPlot w;
+    w.appendColumn(SweepBranch::Up, 1e-3, {0.1e-3, 0.2e-3});
+    w.appendColumn(SweepBranch::Up, 2e-3, {0.3e-3});
+    w.appendColumn(SweepBranch::Down, 2e-3, {0.4e-3, 0.5e-3, 0.6e-3});
+    QCOMPARE(w.pointCount(), 6);
+    QwtPlotCurve* up = w.curve("rate-state: up");
+    QwtPlotCurve* down = w.curve("rate-state: down");
+    QVERIFY(up && down);
+    QCOMPARE(up->dataSize(), size_t(3));
+    QCOMPARE(up->sample(2), QPointF(2.0, 0.3));   // mm, mm
+    QCOMPARE(down->sample(0), QPointF(2.0, 0.4));
+    QVERIFY(up->symbol() && down->symbol());
+    QVERIFY(up->symbol()->pen().color() != down->symbol()->pen().color());
+    // Streamed appends grow the bounding rect (cached rect invalidated).
+    w.appendColumn(SweepBranch::Up, 4e-3, {1e-3});
+    QCOMPARE(up->boundingRect().right(), 4.0);
+    SweepPoint pt;
+    pt.value = 5e-3;
+    pt.direction = -1;
+    pt.section.slider_m = {0.7e-3};
+    w.appendPoint(pt, LawKind::Coulomb);
+    QVERIFY(w.curve("Coulomb: down"));
+    w.clearAll();
+    QCOMPARE(w.pointCount(), 0);
+}
+
+void TestWidgets::spectrumIsLogScaled() {
+    SpectrumPlot w;
+    w.setSpectrum({0.0, 1.0, 2.0, 3.0}, {0.0, 1e-6, 1e-3, 1e-9});
+    QVERIFY(dynamic_cast<const QwtLogScaleEngine*>(w.plot()->axisScaleEngine(QwtPlot::yLeft)));
+    QwtPlotCurve* c = w.curve("rate-state: PSD");
+    QVERIFY(c);
+    QCOMPARE(c->sample(0).y(), 1e-9);   // zero clamped to the smallest positive value
+    QCOMPARE(c->sample(2).y(), 1e-3);
+
+    AutocorrelationPlot a;
+    a.setAutocorrelation({0.0, 0.1, 0.2}, {1.0, 0.5, -0.2});
+    QCOMPARE(a.curve("rate-state: autocorrelation")->sample(2), QPointF(0.2, -0.2));
+}
+
+void TestWidgets::periodicityMapShowsClasses() {
+    PeriodicityGrid g;
+    g.nx = 3;
+    g.ny = 2;
+    g.x0 = 1e-3;
+    g.x1 = 3e-3;
+    g.y0 = 3.0;
+    g.y1 = 4.0;
+    g.classes = {kMapStick, 1, 2, kMapIrregular, 5, kMapMissing};
+    PeriodicityMapPlot w;
+    w.setMap(g, "A [mm]", 1e3, "f [Hz]", 1.0);
+    const auto* data = dynamic_cast<const QwtMatrixRasterData*>(w.spectrogram()->data());
+    QVERIFY(data);
+    // Cell centres carry their class codes.
+    QCOMPARE(data->value(1.0, 3.0), double(kMapStick));
+    QCOMPARE(data->value(2.0, 3.0), 1.0);
+    QCOMPARE(data->value(3.0, 3.0), 2.0);
+    QCOMPARE(data->value(1.0, 4.0), double(kMapIrregular));
+    QCOMPARE(data->value(2.0, 4.0), 5.0);
+    QVERIFY(PeriodicityMapPlot::classColor(kMapIrregular) != PeriodicityMapPlot::classColor(1));
+    QVERIFY(PeriodicityMapPlot::classColor(kMapStick) != PeriodicityMapPlot::classColor(2));
+
+    // From the core map type: motion classes become codes, undone cells "missing".
+    PeriodicityMap m;
+    m.values1 = {1e-3, 2e-3};
+    m.values2 = {3.0};
+    m.motion = {MotionClass::Stick, MotionClass::Periodic};
+    m.period = {1, 3};
+    m.done = {1, 1};
+    PeriodicityGrid g2 = gridFromMap(m);
+    QCOMPARE(g2.nx, 2);
+    QCOMPARE(g2.at(0, 0), kMapStick);
+    QCOMPARE(g2.at(1, 0), 3);
+    m.done = {1, 0};
+    QCOMPARE(gridFromMap(m).at(1, 0), kMapMissing);
+
+    QTemporaryDir dir;
+    const QString csv = dir.filePath("map.csv");
+    QVERIFY(w.exportTo(csv));
+    const QString text = QString::fromUtf8(readAll(csv));
+    QVERIFY(text.contains("class,2,4,5"));   // cell (A = 2 mm, f = 4 Hz) is period 5
+}
+
+void TestWidgets::exportEachFormat() {
+    const RunResult run = shortRun(LawKind::RateState);
+    TimeSeriesPlot w;
+    w.setChannels(channelBit(Channel::Slider) | channelBit(Channel::FrictionRatio));
+    w.setRun(run, 1.0 / 3.0);
+    QTemporaryDir dir;
+    QVERIFY(dir.isValid());
+    QString error;
+    QVERIFY2(w.exportTo(dir.filePath("p.png"), &error), qPrintable(error));
+    QVERIFY2(w.exportTo(dir.filePath("p.svg"), &error), qPrintable(error));
+    QVERIFY2(w.exportTo(dir.filePath("p.pdf"), &error), qPrintable(error));
+    QVERIFY2(w.exportTo(dir.filePath("p.csv"), &error), qPrintable(error));
+    QVERIFY(readAll(dir.filePath("p.png")).startsWith("\x89PNG"));
+    const QByteArray svg = readAll(dir.filePath("p.svg"));
+    QVERIFY(svg.startsWith("<?xml") || svg.startsWith("<svg"));
+    QVERIFY(svg.contains("<svg"));
+    QVERIFY(readAll(dir.filePath("p.pdf")).startsWith("%PDF"));
+    // The PNG has the requested size (160 x 100 mm at 110 dpi) and is not blank.
+    QImage img(dir.filePath("p.png"));
+    QCOMPARE(img.width(), qRound(160 / 25.4 * 110));
+    QCOMPARE(img.height(), qRound(100 / 25.4 * 110));
+    // No temp files left behind (QSaveFile renamed them).
+    QCOMPARE(QDir(dir.path()).entryList(QDir::Files).size(), 4);
+
+    // CSV: every plotted sample, values read back equal to the curve data.
+    io::CsvTable table;
+    io::CsvError err;
+    const QByteArray csv = readAll(dir.filePath("p.csv"));
+    QVERIFY(csv.contains("series,time t [s],slider x [mm]"));
+    // Strip the series column and re-parse the numbers per line.
+    const QList<QByteArray> lines = csv.split('\n');
+    int slider = 0, ratio = 0;
+    for (const QByteArray& line : lines) {
+        const QList<QByteArray> f = line.split(',');
+        if (f.size() != 3) continue;
+        if (f[0] == "rate-state: slider x") {
+            QCOMPARE(f[1].toDouble(), run.samples[slider].t_s);
+            QCOMPARE(f[2].toDouble(), run.samples[slider].slider_m * 1e3);
+            ++slider;
+        } else if (f[0].startsWith("rate-state: F/t_N")) {
+            QCOMPARE(f[2].toDouble(), run.samples[ratio].ratio);
+            ++ratio;
+        }
+    }
+    QCOMPARE(size_t(slider), run.samples.size());
+    QCOMPARE(size_t(ratio), run.samples.size());
+}
+
+void TestWidgets::exportMultiPanel() {
+    PoincarePlot a;
+    a.setSection(std::vector<double>{1e-3, 2e-3}, std::vector<double>{0.1, 0.2});
+    SpectrumPlot b;
+    b.setSpectrum({1, 2, 3}, {1, 2, 3});
+    QTemporaryDir dir;
+    ExportOptions eo;
+    eo.size_mm = QSizeF(200, 80);
+    QString error;
+    QVERIFY2(exportPlots({a.plot(), b.plot()}, 2, dir.filePath("two.png"), &error, eo), qPrintable(error));
+    QImage img(dir.filePath("two.png"));
+    QCOMPARE(img.width(), qRound(200 / 25.4 * 110));
+    QVERIFY2(exportPlots({a.plot(), b.plot()}, 1, dir.filePath("two.pdf"), &error, eo), qPrintable(error));
+    QVERIFY(readAll(dir.filePath("two.pdf")).startsWith("%PDF"));
+}
+
+void TestWidgets::exportErrors() {
+    PoincarePlot a;
+    QTemporaryDir dir;
+    QString error;
+    QVERIFY(!a.exportTo(dir.filePath("p.bmpx"), &error));
+    QVERIFY(error.contains("bmpx"));
+    QVERIFY(!a.exportTo(dir.filePath("no/such/dir/p.png"), &error));
+    QVERIFY(error.contains("p.png"));
+    QVERIFY(!exportPlot(nullptr, dir.filePath("x.png"), &error));
+    // A failed export leaves an existing target untouched.
+    const QString target = dir.filePath("keep.xyz");
+    {
+        QFile f(target);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("old");
+    }
+    QVERIFY(!a.exportTo(target, &error));
+    QCOMPARE(readAll(target), QByteArray("old"));
+}
+
+void TestWidgets::rigViewDrivesCursor() {
+    const SimParams p = shortParams(LawKind::RateState);
+    const RunResult run = simulate(p);
+    RigView rig;
+    TimeSeriesPlot ts;
+    ts.setRun(run, p.drive.period());
+    QObject::connect(&rig, &RigView::timeChanged, &ts, &TimeSeriesPlot::setCursorTime);
+    QSignalSpy spy(&rig, &RigView::timeChanged);
+    rig.setRun(run, p);
+    QCOMPARE(spy.count(), 1);
+    const double tMid = run.samples[run.samples.size() / 2].t_s;
+    rig.setTime(tMid);
+    QCOMPARE(ts.cursorTime(), tMid);
+    Sample s;
+    QVERIFY(rig.currentSample(s));
+    QCOMPARE(s.t_s, tMid);
+    QCOMPARE(s.stuck, run.samples[run.samples.size() / 2].stuck);
+    // Out-of-range times are clamped to the run.
+    rig.setTime(1e9);
+    QCOMPARE(rig.currentTime(), run.samples.back().t_s);
+
+    // Playing advances time (and loops at the end); pausing stops it.
+    rig.setTime(run.samples.front().t_s);
+    rig.setSpeed(0.2);
+    QCOMPARE(rig.speed(), 0.2);
+    rig.play();
+    QVERIFY(rig.isPlaying());
+    QTRY_VERIFY_WITH_TIMEOUT(rig.currentTime() > run.samples.front().t_s, 5000);
+    QVERIFY(ts.cursorTime() > run.samples.front().t_s);
+    rig.pause();
+    QVERIFY(!rig.isPlaying());
+    const double t = rig.currentTime();
+    QTest::qWait(100);
+    QCOMPARE(rig.currentTime(), t);
+    // Rendering the schematic works offscreen and is not blank.
+    rig.resize(600, 300);
+    const QImage img = rig.grab().toImage();
+    QVERIFY(!img.isNull());
+    int nonWhite = 0;
+    for (int y = 0; y < img.height(); y += 3)
+        for (int x = 0; x < img.width(); x += 3)
+            if (img.pixelColor(x, y) != QColor(Qt::white)) ++nonWhite;
+    QVERIFY(nonWhite > 100);
+    rig.clear();
+    QVERIFY(!rig.currentSample(s));
+}
+
+QTEST_MAIN(TestWidgets)
+#include "tst_widgets.moc"
