@@ -40,6 +40,7 @@ std::string formatIssues(const ParamIssues& issues) {
 ParamIssues DriveParams::validate() const {
     ParamIssues out;
     requireNonNegative(out, "A", amplitude_m);
+    if (std::isfinite(amplitude_m) && amplitude_m > 1.0) out.push_back({"A", amplitude_m, "<= 1 m"});
     requirePositive(out, "f", frequency_Hz);
     requireFinite(out, "phase", phase_rad);
     return out;

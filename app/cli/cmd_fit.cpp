@@ -286,6 +286,7 @@ void addFitCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--lowpass-order", o->pre.filters.lowPassOrder, "low-pass order")->capture_default_str();
     cmd->add_option("--trim-start", o->pre.trim.start_s, "drop this many seconds at the start [s]");
     cmd->add_option("--trim-end", o->pre.trim.end_s, "drop this many seconds at the end [s]");
+    cmd->add_option("--stage-harmonics", o->pre.stageFourierOrder, "dynamics: stage input = Fourier fit with this many harmonics (0 = measured)")->capture_default_str();
     cmd->add_flag("--no-steady-trim", o->noSteadyTrim, "keep ramps (do not trim to the steady drive amplitude)");
     cmd->add_option("--stride", o->predict.stride, "prescribed: decimation of the measured samples")->capture_default_str();
     cmd->add_option("--substeps", o->predict.substeps, "prescribed: law steps per decimated sample")->capture_default_str();

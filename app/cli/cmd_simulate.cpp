@@ -78,7 +78,8 @@ void addSimulateCommand(CLI::App& root, int& exitCode) {
         ->type_name("FILE.csv");
     cmd->add_option("--out", o->out, "Output CSV file, or - for standard output")->required()->type_name("FILE.csv|-");
     cmd->footer(
-        "Exit codes: 0 ok, 2 bad arguments or parameters, 3 unreadable or malformed input (file:line:column), "
+        "Exit codes: 0 ok, 2 bad arguments or parameters, 3 unreadable or malformed input (file:line:column) or "
+        "an output file that cannot be written, "
         "4 run failed numerically.");
     cmd->callback([&exitCode, o] { runSimulate(*o, exitCode); });
 }

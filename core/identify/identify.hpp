@@ -2,7 +2,8 @@
 // after. Fit the baseline law, diagnose the residual, fit every catalogue effect on top of the
 // current model, add the one that lowers the penalised error most (BIC with the effective
 // number of independent residuals) if it also lowers the held-out error, and repeat until
-// nothing helps (BIC counts slip episodes, not samples, as independent). Never claims an effect it did not find; reports remaining structure.
+// nothing helps (BIC counts slip episodes, not samples, as independent). Never claims
+// an effect it did not find; reports remaining structure.
 //
 // Residuals. Prescribed set-up (Fig. 15a): the extended law is run along the measured slip
 // history (simulateExtendedPrescribed); residual = predicted − measured force, all samples.

@@ -246,6 +246,52 @@ std::pair<size_t, size_t> steadyAmplitudeWindow(const std::vector<double>& y, si
     return {bestB, bestE};
 }
 
+std::vector<double> fourierFit(const std::vector<double>& t, const std::vector<double>& y, double f, int order, size_t b,
+                               size_t e, double* rss) {
+    const Eigen::Index cols = 1 + 2 * order;
+    const double w = 2.0 * std::numbers::pi * f;
+    auto basis = [&](double tt, Eigen::Index k) {
+        if (k == 0) return 1.0;
+        const double h = static_cast<double>((k + 1) / 2);
+        return (k % 2) ? std::sin(h * w * tt) : std::cos(h * w * tt);
+    };
+    Eigen::MatrixXd AtA = Eigen::MatrixXd::Zero(cols, cols);
+    Eigen::VectorXd Aty = Eigen::VectorXd::Zero(cols), row(cols);
+    for (size_t i = b; i < e; ++i) {
+        for (Eigen::Index k = 0; k < cols; ++k) row(k) = basis(t[i], k);
+        AtA.noalias() += row * row.transpose();
+        Aty += row * y[i];
+    }
+    const Eigen::VectorXd c = AtA.ldlt().solve(Aty);
+    std::vector<double> out(t.size());
+    double ss = 0;
+    for (size_t i = 0; i < t.size(); ++i) {
+        double v = 0;
+        for (Eigen::Index k = 0; k < cols; ++k) v += c(k) * basis(t[i], k);
+        out[i] = v;
+        if (i >= b && i < e) ss += (v - y[i]) * (v - y[i]);
+    }
+    if (rss) *rss = ss;
+    return out;
+}
+
+double refineFrequency(const std::vector<double>& t, const std::vector<double>& y, double f0, int order, double span) {
+    auto cost = [&](double f) {
+        double r = 0;
+        fourierFit(t, y, f, order, 0, t.size(), &r);
+        return r;
+    };
+    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+    double a = f0 * (1 - span), b = f0 * (1 + span);
+    double c = b - g * (b - a), d = a + g * (b - a);
+    double fc = cost(c), fd = cost(d);
+    for (int it = 0; it < 40 && (b - a) > 1e-9 * f0; ++it) {
+        if (fc < fd) { b = d; d = c; fd = fc; c = b - g * (b - a); fc = cost(c); }
+        else { a = c; c = d; fc = fd; d = a + g * (b - a); fd = cost(d); }
+    }
+    return 0.5 * (a + b);
+}
+
 std::vector<std::string> PreprocessSettings::validate(double fs) const {
     std::vector<std::string> v;
     auto num = [](double x) { return std::to_string(x); };
@@ -264,6 +310,7 @@ std::vector<std::string> PreprocessSettings::validate(double fs) const {
     if (sgOrder < 1 || sgOrder > 2 * sgHalfWindow) v.push_back("Savitzky-Golay order must be in [1, 2*halfWindow]");
     if (!(trim.amplitudeFraction > 0.0 && trim.amplitudeFraction <= 1.0)) v.push_back("trim amplitude fraction must be in (0, 1]");
     if (trim.start_s < 0 || trim.end_s < 0) v.push_back("trim times must be >= 0");
+    if (stageFourierOrder < 0 || stageFourierOrder > 50) v.push_back("stage Fourier order must be in [0, 50]");
     return v;
 }
 
@@ -276,6 +323,7 @@ nlohmann::json toJson(const PreprocessSettings& s) {
                      {"zero_phase", true}};
     j["resample_if_irregular"] = s.resample;
     j["savitzky_golay"] = {{"window", 2 * s.sgHalfWindow + 1}, {"order", s.sgOrder}};
+    j["stage_fourier_order"] = s.stageFourierOrder;
     j["trim"] = {{"start_s", s.trim.start_s}, {"end_s", s.trim.end_s}, {"steady_amplitude", s.trim.steadyAmplitude},
                  {"amplitude_fraction", s.trim.amplitudeFraction}};
     return j;
@@ -367,10 +415,25 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
             c.notes.push_back("rel_vel from slip by Savitzky-Golay");
         }
     }
-    // 4. trimming
+    // 4. drive period, and the smooth stage input of dynamics runs
     double f = 0.0;
     if (r.setting("f", f) && f > 0.0) c.period_s = 1.0 / f;
     else if (r.has(Signal::StageDisp)) c.period_s = estimatePeriod(t, r[Signal::StageDisp]);
+    if (s.stageFourierOrder > 0 && c.period_s > 0.0 && r.has(Signal::SliderDisp) && r.has(Signal::StageDisp)) {
+        const double fr = refineFrequency(t, r[Signal::StageDisp], 1.0 / c.period_s, s.stageFourierOrder);
+        c.period_s = 1.0 / fr;
+        r[Signal::StageDisp] = fourierFit(t, r[Signal::StageDisp], fr, s.stageFourierOrder, 0, t.size());
+        if (!raw.has(Signal::StageVel)) r[Signal::StageVel] = sgd(r[Signal::StageDisp]);
+        if (r.has(Signal::SliderVel) && !raw.has(Signal::RelVel)) {
+            r[Signal::RelVel] = r[Signal::StageVel];
+            for (size_t i = 0; i < r[Signal::RelVel].size(); ++i) r[Signal::RelVel][i] -= r[Signal::SliderVel][i];
+        }
+        r[Signal::Slip] = r[Signal::StageDisp];
+        for (size_t i = 0; i < r[Signal::Slip].size(); ++i) r[Signal::Slip][i] -= r[Signal::SliderDisp][i];
+        c.notes.push_back("stage_disp replaced by its Fourier fit (" + std::to_string(s.stageFourierOrder) +
+                          " harmonics) at the refined drive frequency " + std::to_string(fr) + " Hz");
+    }
+    // 5. trimming
     const size_t n = t.size();
     size_t b = 0, e = n;
     if (s.trim.steadyAmplitude && c.period_s > 0.0 && r.has(Signal::StageDisp)) {

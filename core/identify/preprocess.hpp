@@ -50,6 +50,14 @@ double estimatePeriod(const std::vector<double>& t, const std::vector<double>& y
 // excitation.
 std::pair<size_t, size_t> steadyAmplitudeWindow(const std::vector<double>& y, size_t periodSamples, double fraction);
 
+// Least-squares Fourier series at frequency f (mean + harmonics 1..order) fitted to y over
+// samples [begin, end) and evaluated at every t; `rss` gets the residual sum of squares.
+std::vector<double> fourierFit(const std::vector<double>& t, const std::vector<double>& y, double f_Hz, int order,
+                               size_t begin, size_t end, double* rss = nullptr);
+// The frequency within ±span (relative) of f0 whose Fourier fit leaves the least residual
+// (golden-section search): the drive frequency to ~1e-6 from a noisy record.
+double refineFrequency(const std::vector<double>& t, const std::vector<double>& y, double f0_Hz, int order, double span = 0.01);
+
 struct FilterSettings {
     bool bandStop = true;         // mains band-stop on
     double bandStopCenter_Hz = 60.0;
@@ -74,6 +82,11 @@ struct PreprocessSettings {
     int sgHalfWindow = 7;                 // Savitzky–Golay window 2·7+1 samples
     int sgOrder = 3;
     TrimSettings trim;
+    // Dynamics runs (a slider displacement is present) with a steady harmonic drive: the stage
+    // displacement that drives the model is replaced by its Fourier fit (this many harmonics)
+    // at the refined drive frequency. Sensor noise on u would otherwise reach the predicted
+    // force amplified by ε_T during stick. 0 = use the filtered measurement as it is.
+    int stageFourierOrder = 5;
     std::vector<std::string> validate(double sampleRate_Hz) const;  // every problem, empty if fine
 };
 

@@ -176,7 +176,8 @@ inline bool newmarkStep(const NewmarkConstants& K, const Law& law, const Prepare
     const double a1 = K.i4h2 * (x - s.x - h * s.v) - s.a;
     const double v1 = K.i2h * (x - s.x) - s.v;
     if (!std::isfinite(x) || !std::isfinite(v1) || !std::isfinite(a1)) { why = "non-finite slider state (x)"; badValue = x; return false; }
-    if (!std::isfinite(rm.state.force_N) || !std::isfinite(rm.state.alpha)) { why = "non-finite friction force (F)"; badValue = rm.state.force_N; return false; }
+    if (!std::isfinite(rm.state.force_N)) { why = "non-finite friction force (F)"; badValue = rm.state.force_N; return false; }
+    if (!std::isfinite(rm.state.alpha)) { why = "non-finite state variable (alpha)"; badValue = rm.state.alpha; return false; }
     s.t += h; s.x = x; s.v = v1; s.a = a1; s.u = u1;
     s.law = rm.state;
     s.slipRate = rm.slipIncrement_m * K.i2h * 0.5;

@@ -40,7 +40,7 @@ std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector
         paramUnit(key, unit);
         // Shortest text that reads back to the same double.
         char num[64];
-        const auto res = std::to_chars(num, num + sizeof num, v);
+        const auto res = std::to_chars(num, num + sizeof num, v, std::chars_format::general);
         s += "# " + key + " = " + std::string(num, res.ptr) + (unit.empty() ? "" : " ") + unit + "\n";
     }
     for (const std::string& c : extraComments) s += "# " + c + "\n";

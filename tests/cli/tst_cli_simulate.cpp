@@ -156,6 +156,29 @@ private slots:
         QVERIFY(!QFile::exists(out));
     }
 
+    void unwritableOutputExit3() {
+        const Result r = runCli({"simulate", "--preset", "fig16", "--cycles", "1", "--out", "/nonexistent/dir/o.csv"});
+        QCOMPARE(r.exitCode, 3);
+        QVERIFY2(r.err.contains("/nonexistent/dir/o.csv"), r.err.constData());
+    }
+
+    // --model coulomb reaches the run: the header says so, and with t_N F/t_N never exceeds μ
+    // by more than the penalty allows (|F| <= μ t_N in the elasto-plastic Coulomb law).
+    void coulombModel() {
+        const Result r = runCli({"simulate", "--preset", "fig20", "--model", "coulomb", "--set", "mu=0.3",
+                                 "--cycles", "2", "--out", "-"});
+        QVERIFY2(r.exitCode == 0, r.err.constData());
+        QVERIFY(r.out.contains("\n# model = coulomb\n"));
+        QVERIFY(r.out.contains("\n# mu = 0.3\n"));
+        io::CsvTable t;
+        io::CsvError e;
+        QVERIFY2(io::parseCsvTable(r.out.toStdString(), "stdout", t, e), e.what().c_str());
+        double maxRatio = 0;
+        for (double q : t.columns[t.column("friction_ratio")]) maxRatio = std::max(maxRatio, std::abs(q));
+        QVERIFY2(maxRatio <= 0.3 * (1 + 1e-9), qPrintable(QString::number(maxRatio, 'g', 12)));
+        QVERIFY(maxRatio > 0.29);  // A = 1 mm at 3 Hz drives the slider into slip
+    }
+
     void missingOutIsBadArgument() {
         const Result r = runCli({"simulate", "--preset", "fig16"});
         QCOMPARE(r.exitCode, 2);

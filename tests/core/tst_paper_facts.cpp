@@ -30,12 +30,10 @@ SimParams preset(const char* name, LawKind law = LawKind::RateState) {
 // Independent runs (each value from rest) of `values` on 2 threads.
 SweepResult runAt(const SimParams& p, std::vector<double> values, long settle, long samples, bool lyapunov) {
     SweepResult all;
-    all.key = "A";
     // One sweep per value keeps arbitrary (non-uniform) values; run them through the
     // independent mode two at a time so both cores work.
     for (std::size_t i = 0; i < values.size(); i += 2) {
         SweepOptions o;
-        o.key = "A";
         o.mode = SweepMode::Independent;
         o.from = values[i];
         o.to = i + 1 < values.size() ? values[i + 1] : values[i];
@@ -89,7 +87,6 @@ private slots:
         SimParams p = preset("fig20");
         const double As = stickThresholdAmplitude(p);
         SweepOptions o;
-        o.key = "A";
         o.from = 0.315e-3;
         o.to = 0.415e-3;
         o.steps = 21;  // 0.005 mm apart
@@ -136,7 +133,6 @@ private slots:
             QVERIFY2(pt.lyapunovPerCycle > 0.02, qPrintable(describe(pt)));
         }
         SweepOptions o;
-        o.key = "A";
         o.mode = SweepMode::Independent;
         o.from = 0.35e-3;
         o.to = 5e-3;

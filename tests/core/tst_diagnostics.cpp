@@ -1,0 +1,131 @@
+// Residual diagnostics: autocorrelation, Ljung–Box, spectrum, correlations with signals.
+#include <QtTest/QtTest>
+
+#include <cmath>
+#include <random>
+
+#include "core/identify/diagnostics.hpp"
+
+using namespace stickslip::identify;
+
+namespace {
+std::vector<double> whiteNoise(size_t n, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> nd(0.0, 1.0);
+    std::vector<double> x(n);
+    for (double& v : x) v = nd(rng);
+    return x;
+}
+}  // namespace
+
+class TestDiagnostics : public QObject {
+    Q_OBJECT
+private slots:
+    void chiSquareTail() {
+        QVERIFY(std::abs(chiSquareSurvival(3.841458820694124, 1) - 0.05) < 1e-6);
+        QVERIFY(std::abs(chiSquareSurvival(18.307038053275146, 10) - 0.05) < 1e-6);
+        QVERIFY(std::abs(chiSquareSurvival(2.0, 2) - std::exp(-1.0)) < 1e-10);
+        QCOMPARE(chiSquareSurvival(0.0, 5), 1.0);
+    }
+    void autocorrelationOfNoiseAndSine() {
+        const auto w = whiteNoise(20000, 1);
+        const auto acf = autocorrelation(w, 10);
+        QCOMPARE(acf[0], 1.0);
+        for (int k = 1; k <= 10; ++k) QVERIFY(std::abs(acf[k]) < 0.03);
+        std::vector<double> s(20000);
+        for (size_t i = 0; i < s.size(); ++i) s[i] = std::sin(2 * M_PI * i / 100.0);
+        const auto as = autocorrelation(s, 50);
+        QVERIFY(std::abs(as[25]) < 0.01);   // quarter period
+        QVERIFY(as[50] < -0.98);             // half period
+        QVERIFY(integratedAcfTime(acf) < 1.2);
+        QVERIFY(integratedAcfTime(as) > 5.0);
+    }
+    void ljungBoxSeparatesWhiteFromCorrelated() {
+        const auto w = whiteNoise(5000, 7);
+        double Q = 0, p = 0;
+        ljungBox(autocorrelation(w, 20), w.size(), 20, Q, p);
+        QVERIFY(p > 0.01);
+        std::vector<double> ar(5000);
+        ar[0] = w[0];
+        for (size_t i = 1; i < ar.size(); ++i) ar[i] = 0.5 * ar[i - 1] + w[i];
+        ljungBox(autocorrelation(ar, 20), ar.size(), 20, Q, p);
+        QVERIFY(p < 1e-6);
+        QVERIFY(Q > 1000);
+    }
+    void spectrumFindsTheForcingHarmonics() {
+        const double dt = 1e-3, f = 5.0;
+        std::vector<double> x(8000);
+        for (size_t i = 0; i < x.size(); ++i) x[i] = std::sin(2 * M_PI * f * i * dt) + 0.3 * std::sin(2 * M_PI * 3 * f * i * dt);
+        const Spectrum sp = powerSpectrum(x, dt, f);
+        size_t kmax = 1;
+        for (size_t k = 1; k < sp.power.size(); ++k) if (sp.power[k] > sp.power[kmax]) kmax = k;
+        QVERIFY(std::abs(sp.frequency_Hz[kmax] - f) < 0.2);
+        QVERIFY(sp.harmonics_Hz.size() >= 3);
+        QVERIFY(std::abs(sp.harmonics_Hz[2] - 15.0) < 1e-12);
+        QVERIFY(sp.harmonicFraction > 0.95);
+        const Spectrum sw = powerSpectrum(whiteNoise(8000, 3), dt, f);
+        QVERIFY(sw.harmonicFraction < 0.2);
+    }
+    void pearsonBasics() {
+        QVERIFY(std::abs(pearson({1, 2, 3, 4}, {2, 4, 6, 8}) - 1.0) < 1e-12);
+        QVERIFY(std::abs(pearson({1, 2, 3, 4}, {8, 6, 4, 2}) + 1.0) < 1e-12);
+        QCOMPARE(pearson({1, 1, 1}, {1, 2, 3}), 0.0);
+    }
+    void candidateSignalsOfASine() {
+        DiagnosticRun r;
+        const double dt = 1e-3, f = 2.0;
+        for (int i = 0; i < 2000; ++i) {
+            const double t = i * dt;
+            r.t_s.push_back(t);
+            r.slip_m.push_back(1e-3 * std::sin(2 * M_PI * f * t));
+            r.relVel_mps.push_back(1e-3 * 2 * M_PI * f * std::cos(2 * M_PI * f * t));
+            r.residual.push_back(0.0);
+        }
+        r.normalForce_N = 5.0;
+        r.forcingFrequency_Hz = f;
+        r.runIndex = 2;
+        const auto names = candidateSignalNames();
+        const auto s = candidateSignals(r, 1e-3);
+        QCOMPARE(s.size(), names.size());
+        QCOMPARE(names[6], std::string("time_since_reversal"));
+        // V turns negative at t = 0.125 s and counts as sliding once |V| ≥ 1 mm/s, δ later:
+        // at t = 0.175 s time_since_reversal = −(0.05 − δ) (signed by V).
+        const double delta = std::asin(1e-3 / (1e-3 * 2 * M_PI * f)) / (2 * M_PI * f);
+        QVERIFY(std::abs(s[6][175] + (0.05 - delta)) < 2e-3);
+        QCOMPARE(s[9][175], -5.0);  // t_N signed by the slip direction
+        QCOMPARE(s[11][1900], 3.0);  // fourth cycle, positive slip
+        QVERIFY(s[8][1999] > 0.0155 && s[8][1999] < 0.0161);  // ≈ 4 cycles × 4 × 1 mm accumulated slip
+    }
+    void diagnosePointsToTheSignalInTheResidual() {
+        std::vector<DiagnosticRun> runs(2);
+        const auto noise = whiteNoise(8000, 11);
+        for (int r = 0; r < 2; ++r) {
+            for (int i = 0; i < 4000; ++i) {
+                const double t = i * 1e-3;
+                const double v = 0.05 * std::cos(2 * M_PI * 3 * t);
+                runs[r].t_s.push_back(t);
+                runs[r].relVel_mps.push_back(v);
+                runs[r].slip_m.push_back(0.05 / (2 * M_PI * 3) * std::sin(2 * M_PI * 3 * t));
+                runs[r].residual.push_back(0.3 * (v > 0 ? 1 : -1) + 0.1 * noise[r * 4000 + i]);
+            }
+            runs[r].forcingFrequency_Hz = 3;
+            runs[r].runIndex = r;
+        }
+        const Diagnostics d = diagnose(runs, 5, 1e-3);
+        double best = 0;
+        std::string which;
+        for (const auto& c : d.correlations)
+            if (std::abs(c.correlation) > best) { best = std::abs(c.correlation); which = c.signal; }
+        QCOMPARE(which, std::string("signV"));
+        QVERIFY(best > 0.9);
+        QVERIFY(!d.whiteness.white);
+        QVERIFY(d.spectrum.harmonicFraction > 0.5);
+        // Pure noise: white.
+        for (int r = 0; r < 2; ++r)
+            for (int i = 0; i < 4000; ++i) runs[r].residual[i] = noise[r * 4000 + i];
+        QVERIFY(diagnose(runs, 1, 1e-3).whiteness.white);
+    }
+};
+
+QTEST_GUILESS_MAIN(TestDiagnostics)
+#include "tst_diagnostics.moc"

@@ -1,0 +1,229 @@
+// The missing-effect catalogue and the extended model: each effect does what its file says.
+#include <QtTest/QtTest>
+
+#include <cmath>
+
+#include "core/friction/rate_state.hpp"
+#include "core/identify/effects/registry.hpp"
+#include "core/identify/extended_model.hpp"
+#include "core/integrate/dynamics.hpp"
+
+using namespace stickslip;
+using namespace stickslip::identify;
+
+namespace {
+
+// Constant-velocity slide: g = v t over `seconds`, sampled at 1/dt.
+void ramp(double v, double seconds, double dt, std::vector<double>& t, std::vector<double>& g) {
+    t.clear(); g.clear();
+    for (double tt = 0; tt <= seconds + 1e-12; tt += dt) { t.push_back(tt); g.push_back(v * tt); }
+}
+
+ExtendedModel baseModel() {
+    ExtendedModel m;
+    m.law.mu = 0.25; m.law.C1 = 0.25; m.law.eta_s_per_m = 0.6; m.law.Dc_m = 20e-6; m.law.vc_mps = 0.1;
+    m.law.epsT_N_per_m = 1e6;
+    m.tNref_N = 6.2;
+    return m;
+}
+
+}  // namespace
+
+class TestEffects : public QObject {
+    Q_OBJECT
+private slots:
+    void catalogueHasTheNamesTheReportUses() {
+        const std::vector<std::string> want = {"frictional_lag", "normal_load_mu", "direction_asymmetry", "wear_drift", "stick_healing",
+                                               "backlash", "presliding_compliance", "viscous_damping", "sensor_inertia"};
+        const auto cat = effectCatalogue();
+        QCOMPARE(cat.size(), want.size());
+        for (size_t i = 0; i < want.size(); ++i) {
+            QCOMPARE(cat[i].name, want[i]);
+            QVERIFY(cat[i].description.size() > 100);
+            QVERIFY(!cat[i].signature.empty());
+            QVERIFY(!cat[i].params.empty());
+            QVERIFY(!cat[i].pointers.empty());
+            for (const auto& p : cat[i].params) {
+                QVERIFY(p.lower < p.upper);
+                QVERIFY(p.initial >= p.lower && p.initial <= p.upper);
+                if (p.logScale) QVERIFY(p.lower > 0);
+            }
+        }
+    }
+    void setGetClearRoundTrip() {
+        EffectSet s;
+        QVERIFY(s.names().empty());
+        QVERIFY(setEffect(s, "stick_healing", {0.1, 0.2}));
+        QVERIFY(setEffect(s, "backlash", {1e-4}));
+        std::vector<double> v;
+        QVERIFY(getEffect(s, "stick_healing", v));
+        QCOMPARE(v.size(), size_t(2));
+        QCOMPARE(v[1], 0.2);
+        QCOMPARE(s.names(), (std::vector<std::string>{"stick_healing", "backlash"}));
+        std::string err;
+        QVERIFY(!setEffect(s, "stick_healing", {0.1}, &err));
+        QVERIFY(err.find("2 parameter") != std::string::npos);
+        QVERIFY(!setEffect(s, "teleportation", {1.0}, &err));
+        QVERIFY(err.find("unknown effect") != std::string::npos);
+        clearEffect(s, "backlash");
+        QVERIFY(!getEffect(s, "backlash", v));
+        EffectInfo info;
+        QVERIFY(findEffect("wear_drift", info));
+        QVERIFY(!findEffect("nope", info));
+    }
+    void noEffectsEqualsTheBaseLaw() {
+        const ExtendedModel m = baseModel();
+        const ExtendedLaw ext = ExtendedLaw::make(m);
+        const RateStateLaw base{m.law};
+        LawState a = ext.initialState({6.2, 0}), b;
+        for (int i = 0; i < 20000; ++i) {
+            const double t = i * 1e-4;
+            const double dg = 2e-3 * 2 * M_PI * 3 * std::cos(2 * M_PI * 3 * t) * 1e-4;
+            const auto ra = ext.returnMap(a, dg, 1e-4, 6.2);
+            const auto rb = base.returnMap(b, dg, 1e-4, 6.2);
+            QVERIFY(std::abs(ra.state.force_N - rb.state.force_N) < 1e-8);
+            QVERIFY(std::abs(ra.state.alpha - rb.state.alpha) < 1e-8);
+            a = ra.state; b = rb.state;
+        }
+    }
+    void steadySlidingMatchesEq5AndLoadAndDirectionShifts() {
+        ExtendedModel m = baseModel();
+        std::vector<double> t, g;
+        ramp(0.05, 0.2, 1e-4, t, g);
+        const RateStateLaw base{m.law};
+        const double ss = base.steadyStateRatio(0.05);
+        auto plateau = [&](const ExtendedModel& mm, double tN, double sign) {
+            std::vector<double> gg = g;
+            for (double& x : gg) x *= sign;
+            const auto tr = simulateExtendedPrescribed(mm, {tN, 0}, t, gg, nullptr, 4);
+            return tr.contactForce_N.back() / tN;
+        };
+        QVERIFY(std::abs(plateau(m, 6.2, 1) - ss) < 2e-3);
+        m.effects.normalLoadMu = NormalLoadMu{-0.01};
+        QVERIFY(std::abs(plateau(m, 10.2, 1) - (ss - 0.04)) < 2e-3);  // μ shifted by −0.01 × (10.2 − 6.2)
+        m.effects.normalLoadMu.reset();
+        m.effects.directionAsymmetry = DirectionAsymmetry{0.05};
+        QVERIFY(std::abs(plateau(m, 6.2, 1) - ss) < 2e-3);
+        QVERIFY(std::abs(plateau(m, 6.2, -1) + (ss - 0.05)) < 2e-3);
+    }
+    void wearDriftGrowsWithSlipDistance() {
+        ExtendedModel m = baseModel();
+        m.effects.wearDrift = WearDrift{0.2};  // +0.2 per metre
+        std::vector<double> t, g;
+        ramp(0.05, 2.0, 1e-3, t, g);  // 0.1 m
+        const auto tr = simulateExtendedPrescribed(m, {6.2, 0.5}, t, g, nullptr, 4);
+        const double early = tr.contactForce_N[100] / 6.2, late = tr.contactForce_N.back() / 6.2;
+        QVERIFY(std::abs((late - early) - 0.2 * (g.back() - g[100])) < 1e-3);
+        QVERIFY(std::abs(tr.accumulatedSlipEnd_m - (0.5 + g.back())) < 1e-4);
+    }
+    void stickHealingRaisesBreakawayAfterLongStick() {
+        ExtendedModel m = baseModel();
+        m.effects.stickHealing = StickHealing{0.1, 0.05};
+        // Slide, stick for T, slide again: peak ratio after the stick.
+        auto peakAfterStick = [&](double T) {
+            std::vector<double> t, g;
+            double x = 0, tt = 0;
+            const double dt = 1e-4;
+            for (; tt < 0.05; tt += dt) { t.push_back(tt); g.push_back(x); x += 0.02 * dt; }
+            for (double s = 0; s < T; s += dt, tt += dt) { t.push_back(tt); g.push_back(x); }
+            for (double s = 0; s < 0.05; s += dt, tt += dt) { t.push_back(tt); g.push_back(x); x += 0.02 * dt; }
+            const auto tr = simulateExtendedPrescribed(m, {6.2, 0}, t, g, nullptr, 2);
+            double pk = 0;
+            for (size_t i = t.size() - 500; i < t.size(); ++i) pk = std::max(pk, tr.contactForce_N[i] / 6.2);
+            return pk;
+        };
+        const double shortStick = peakAfterStick(0.005), longStick = peakAfterStick(0.5);
+        QVERIFY(longStick - shortStick > 0.06);  // Δμ (1 − e^{−10}) − Δμ (1 − e^{−0.1}) ≈ 0.09
+    }
+    void frictionalLagDelaysTheVelocityWeakening() {
+        ExtendedModel m = baseModel();
+        std::vector<double> t, g;
+        const double dt = 1e-4;
+        double x = 0;
+        for (double tt = 0; tt < 0.3; tt += dt) {  // 0.01 m/s, then a step to 0.08 m/s
+            t.push_back(tt);
+            g.push_back(x);
+            x += (tt < 0.15 ? 0.01 : 0.08) * dt;
+        }
+        const auto plain = simulateExtendedPrescribed(m, {6.2, 0}, t, g, nullptr, 2);
+        m.effects.frictionalLag = FrictionalLag{0.01};
+        const auto lag = simulateExtendedPrescribed(m, {6.2, 0}, t, g, nullptr, 2);
+        const size_t iStep = static_cast<size_t>(0.15 / dt) + 20, iEnd = t.size() - 1;
+        // Right after the step the lagged strength still has its slow-sliding (higher) value.
+        QVERIFY(lag.contactForce_N[iStep] - plain.contactForce_N[iStep] > 0.05);
+        // Long after (15 τ) both agree.
+        QVERIFY(std::abs(lag.contactForce_N[iEnd] - plain.contactForce_N[iEnd]) < 1e-3);
+    }
+    void backlashHoldsZeroForceAcrossThePlay() {
+        ExtendedModel m = baseModel();
+        m.effects.backlash = Backlash{1e-3};
+        std::vector<double> t, g;
+        const double dt = 1e-4;
+        for (double tt = 0; tt < 1.0; tt += dt) { t.push_back(tt); g.push_back(5e-3 * std::sin(2 * M_PI * tt)); }
+        const auto tr = simulateExtendedPrescribed(m, {6.2, 0}, t, g, nullptr, 2);
+        // After the reversal at t = 0.25 s, g must fall by 2δ before the force turns negative.
+        const size_t iRev = static_cast<size_t>(0.25 / dt);
+        for (size_t i = iRev; i < t.size(); ++i) {
+            if (g[iRev] - g[i] < 1.9e-3) QVERIFY(tr.contactForce_N[i] > -1e-9);
+            if (g[iRev] - g[i] > 0.05e-3 && g[iRev] - g[i] < 1.9e-3) QVERIFY(std::abs(tr.contactForce_N[i]) < 1e-9);
+        }
+        QVERIFY(tr.contactForce_N[static_cast<size_t>(0.5 / dt)] < -1.0);
+    }
+    void preslidingComplianceSoftensTheLoading() {
+        ExtendedModel m = baseModel();
+        m.effects.preslidingCompliance = PreslidingCompliance{1e4};
+        const ExtendedLaw law = ExtendedLaw::make(m);
+        QVERIFY(std::abs(law.epsT() - 1e6 * 1e4 / (1e6 + 1e4)) < 1e-6);
+        const auto r = law.returnMap(law.initialState({6.2, 0}), 1e-5, 1e-4, 6.2);
+        QVERIFY(r.stuck);
+        QVERIFY(std::abs(r.state.force_N - law.epsT() * 1e-5) < 1e-9);
+    }
+    void outputEffectsAddToTheMeasuredForce() {
+        ExtendedModel m = baseModel();
+        m.effects.sensorInertia = SensorInertia{0.3};
+        m.effects.viscousDamping = ViscousDamping{0.5};
+        std::vector<double> t, g;
+        for (double tt = 0; tt < 1.0; tt += 1e-3) { t.push_back(tt); g.push_back(2e-3 * std::sin(2 * M_PI * 2 * tt)); }
+        const auto tr = simulateExtendedPrescribed(m, {6.2, 0}, t, g, nullptr, 2);
+        for (size_t i = 1; i + 1 < t.size(); i += 37) {
+            const double expect = tr.contactForce_N[i] + 0.5 * 6.2 * tr.relVel_mps[i] + 0.3 * tr.sliderAccel_mps2[i];
+            QVERIFY(std::abs(tr.measuredForce_N[i] - expect) < 1e-9);
+        }
+    }
+    void dynamicsWithoutEffectsMatchesTheCoreStepper() {
+        SimParams p;
+        p.drive.amplitude_m = 1e-3;
+        p.drive.frequency_Hz = 3.0;
+        p.integration.dt_s = 1e-4;
+        DynamicsModel dm = DynamicsModel::fromParams(p);
+        DynState s = dm.initialState(0.0);
+        ExtendedModel m = baseModel();
+        m.law = p.rateState;
+        m.rig = p.rig;
+        const long steps = 10000;
+        const auto tr = simulateExtendedDynamics(m, {p.rig.normalForce_N, 0}, dm.stage, 0.0, 1e-4, steps, 100);
+        QVERIFY(tr.ok());
+        std::vector<double> xs;
+        advance(dm, s, steps, [&](const DynState& d) { xs.push_back(d.x); });
+        QVERIFY(std::abs(tr.slider_m.back() - xs.back()) < 1e-9 + 1e-6 * std::abs(xs.back()));
+        // Heavy rig damping changes the response.
+        m.effects.viscousDamping = ViscousDamping{0.5};
+        const auto damped = simulateExtendedDynamics(m, {p.rig.normalForce_N, 0}, dm.stage, 0.0, 1e-4, steps, 100);
+        double a0 = 0, a1 = 0;
+        for (size_t i = 50; i < tr.slider_m.size(); ++i) { a0 = std::max(a0, std::abs(tr.slider_m[i])); a1 = std::max(a1, std::abs(damped.slider_m[i])); }
+        QVERIFY(std::abs(a0 - a1) > 0.02 * a0);
+    }
+    void slipPhaseLimitMatchesSteadyState() {
+        ExtendedModel m = baseModel();
+        std::vector<double> t, V;
+        for (double tt = 0; tt < 0.5; tt += 1e-3) { t.push_back(tt); V.push_back(tt < 0.1 ? 0.0 : -0.04); }
+        const auto sp = simulateSlipPhaseForce(m, {6.2, 0}, t, V, nullptr, 5e-3);
+        QVERIFY(!sp.sliding[50]);
+        QVERIFY(sp.sliding.back());
+        const RateStateLaw base{m.law};
+        QVERIFY(std::abs(sp.force_N.back() / 6.2 + base.steadyStateRatio(0.04)) < 1e-9);
+    }
+};
+
+QTEST_GUILESS_MAIN(TestEffects)
+#include "tst_effects.moc"

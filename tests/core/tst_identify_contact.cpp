@@ -1,0 +1,65 @@
+// The identify loop, blind, on data with one contact or output effect switched on.
+#include <QtTest/QtTest>
+
+#include "identify_synth.hpp"
+
+using namespace stickslip::identify;
+
+namespace {
+
+void expectFound(const ExtendedModel& truth, unsigned seed, const std::string& name) {
+    auto runs = synth::makeRuns(truth, 3.0, 0.02, seed);
+    const IdentifyResult r = identifyEffects(runs, synth::testOptions());
+    QVERIFY2(r.ok, r.message.c_str());
+    QVERIFY2(!r.effectsAdded.empty(), ("nothing added; expected " + name).c_str());
+    QCOMPARE(r.effectsAdded.front().name, name);
+    QVERIFY(r.after.validationNrmse < 0.8 * r.before.validationNrmse);
+    QVERIFY(!r.effectsAdded.front().pointedBy.empty());
+}
+
+}  // namespace
+
+class TestIdentifyContact : public QObject {
+    Q_OBJECT
+private slots:
+    void findsStickHealing() {
+        auto m = synth::trueModel();
+        m.effects.stickHealing = StickHealing{0.08, 0.05};
+        expectFound(m, 11, "stick_healing");
+    }
+    void findsBacklash() {
+        auto m = synth::trueModel();
+        m.effects.backlash = Backlash{2e-4};
+        expectFound(m, 12, "backlash");
+    }
+    void findsPreslidingCompliance() {
+        auto m = synth::trueModel();
+        m.effects.preslidingCompliance = PreslidingCompliance{2e4};
+        expectFound(m, 13, "presliding_compliance");
+    }
+    void findsViscousDamping() {
+        auto m = synth::trueModel();
+        m.effects.viscousDamping = ViscousDamping{0.5};
+        expectFound(m, 14, "viscous_damping");
+    }
+    void findsSensorInertia() {
+        auto m = synth::trueModel();
+        m.effects.sensorInertia = SensorInertia{2.0};
+        expectFound(m, 15, "sensor_inertia");
+    }
+    void badInputIsAStatusNotACrash() {
+        std::vector<IdentifyRun> none;
+        QVERIFY(!identifyEffects(none, synth::testOptions()).ok);
+        auto runs = synth::makeRuns(synth::trueModel(), 0.5, 0.02, 1);
+        runs[0].force_N.pop_back();
+        const IdentifyResult r = identifyEffects(runs, synth::testOptions());
+        QVERIFY(!r.ok);
+        QVERIFY(r.message.find("synthetic_run_1") != std::string::npos);
+        auto o = synth::testOptions();
+        o.candidates = {"flux_capacitor"};
+        QVERIFY(identifyEffects(synth::makeRuns(synth::trueModel(), 0.5, 0.02, 1), o).message.find("unknown effect") != std::string::npos);
+    }
+};
+
+QTEST_GUILESS_MAIN(TestIdentifyContact)
+#include "tst_identify_contact.moc"
