@@ -1,6 +1,9 @@
 #include "view_set.hpp"
 
+#include <QVBoxLayout>
+
 #include "param_specs.hpp"
+#include "time_series_controls.hpp"
 
 #include <cmath>
 
@@ -30,8 +33,15 @@ ViewSet::ViewSet(QWidget* parent) : QObject(parent) {
     map_ = new PeriodicityMapPlot(parent);
     rig_ = new RigView(parent);
     spectrum_->setValueTitle(QStringLiteral("PSD of x [m²/Hz]"));
+    // The time series comes with its channel and cycle-range strip.
+    auto* tsBox = new QWidget(parent);
+    auto* tsLayout = new QVBoxLayout(tsBox);
+    tsLayout->setContentsMargins(0, 0, 0, 0);
+    tsLayout->setSpacing(0);
+    tsLayout->addWidget(new TimeSeriesControls(timeSeries_, tsBox));
+    tsLayout->addWidget(timeSeries_, 1);
     views_ = {
-        {"timeseries", tr("Time series"), timeSeries_, timeSeries_},
+        {"timeseries", tr("Time series"), tsBox, timeSeries_},
         {"rig", tr("Rig"), rig_, nullptr},
         {"loop", tr("F/t_N vs V loop"), loop_, loop_},
         {"phase", tr("Phase portrait"), phase_, phase_},

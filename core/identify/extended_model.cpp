@@ -127,7 +127,7 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
     res.state.force_N = s * (a - eps * x);
     res.state.alpha = alpha;
     res.state.aux[0] = st.aux[0] + x;
-    if (fx.stickHealing) res.state.aux[1] = StickHealing::eraseBySlip(h, x, base.Dc_m);
+    if (fx.stickHealing) res.state.aux[1] = fx.stickHealing->eraseBySlip(h, x);
     if (fx.frictionalLag) res.state.aux[2] = yAct;
     if (fx.backlash) res.state.aux[3] = wTrial - s * x;
     res.tangent_N_per_m = (dR < 0.0) ? eps * (1.0 + eps / dR) : 0.0;
@@ -281,7 +281,7 @@ SlipPhasePrediction simulateSlipPhaseForce(const ExtendedModel& m, const RunCont
             if (slide) {
                 const double decay = std::exp(-v * dt / Dc);
                 s.alpha = -C2 * v + (s.alpha + C2 * v) * decay;
-                h *= decay;
+                if (fx.stickHealing) h = fx.stickHealing->eraseBySlip(h, v * dt);
                 s.aux[0] += v * dt;
             } else if (fx.stickHealing) {
                 h = fx.stickHealing->healWhileStuck(h, dt);

@@ -409,7 +409,16 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
     }
     res.setup = cx.anyDynamics ? "dynamics" : "prescribed";
     cx.tNref = tNsum / runs.size();
-    const size_t dec = static_cast<size_t>(std::max(opt.decimate, 1));
+    size_t dec = static_cast<size_t>(std::max(opt.decimate, 0));
+    if (dec == 0) {
+        const IdentifyRun& r0 = runs.front();
+        const double fs = 1.0 / ((r0.t_s.back() - r0.t_s.front()) / (r0.t_s.size() - 1));
+        double fmax = 0;
+        for (const IdentifyRun& r : runs) fmax = std::max(fmax, r.frequency_Hz);
+        const double target = cx.anyDynamics ? 250.0 : 128.0 * (fmax > 0 ? fmax : 1.0);
+        dec = static_cast<size_t>(std::max(1.0, std::floor(fs / target)));
+    }
+    res.decimation = static_cast<int>(dec);
     for (const IdentifyRun& r : runs) {
         Prepared p;
         p.run = &r;
@@ -684,7 +693,7 @@ nlohmann::json toJson(const IdentifyResult& r) {
     if (r.unexplained) j["unexplained_reason"] = r.unexplainedReason;
     j["selection"] = {{"criterion", "BIC with n_eff = min(n / tau_int, slip episodes); an effect must lower it by more than "
                                     "the margin AND lower the held-out NRMSE (leave-one-run-out, or the --validate-on runs)"},
-                      {"slip_episodes", r.slipEpisodes}};
+                      {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation}};
     j["wall_time_s"] = r.wallTime_s;
     j["fits"] = r.fits;
     return j;

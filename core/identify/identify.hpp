@@ -58,7 +58,8 @@ struct IdentifyOptions {
     std::vector<std::string> candidates;                          // empty: the whole catalogue
     int maxEffects = 3;
     double bicMargin = 10.0;         // ΔBIC must be below −this ("very strong" evidence, Kass & Raftery)
-    int decimate = 4;                // use every n-th sample in the fits
+    int decimate = 0;                // use every n-th sample in the fits; 0: auto (prescribed ≥ 128
+                                     // samples per forcing period, dynamics ≈ 250 Hz)
     int substeps = 2;                // law steps per sample (prescribed)
     double stickVelocity_mps = 5e-3; // |V| below this counts as stuck (dynamics channel, diagnostics)
     int multistarts = 2;
@@ -129,6 +130,7 @@ struct IdentifyResult {
     std::vector<RunTrace> traces;
     double wallTime_s = 0;
     long fits = 0;
+    int decimation = 1;       // samples used: every decimation-th
     double slipEpisodes = 0;  // independent units of the BIC (slip episodes in the fit runs)
 };
 

@@ -53,16 +53,16 @@ private slots:
     void setGetClearRoundTrip() {
         EffectSet s;
         QVERIFY(s.names().empty());
-        QVERIFY(setEffect(s, "stick_healing", {0.1, 0.2}));
+        QVERIFY(setEffect(s, "stick_healing", {0.1, 0.2, 1e-4}));
         QVERIFY(setEffect(s, "backlash", {1e-4}));
         std::vector<double> v;
         QVERIFY(getEffect(s, "stick_healing", v));
-        QCOMPARE(v.size(), size_t(2));
+        QCOMPARE(v.size(), size_t(3));
         QCOMPARE(v[1], 0.2);
         QCOMPARE(s.names(), (std::vector<std::string>{"stick_healing", "backlash"}));
         std::string err;
         QVERIFY(!setEffect(s, "stick_healing", {0.1}, &err));
-        QVERIFY(err.find("2 parameter") != std::string::npos);
+        QVERIFY(err.find("3 parameter") != std::string::npos);
         QVERIFY(!setEffect(s, "teleportation", {1.0}, &err));
         QVERIFY(err.find("unknown effect") != std::string::npos);
         clearEffect(s, "backlash");
@@ -118,7 +118,7 @@ private slots:
     }
     void stickHealingRaisesBreakawayAfterLongStick() {
         ExtendedModel m = baseModel();
-        m.effects.stickHealing = StickHealing{0.1, 0.05};
+        m.effects.stickHealing = StickHealing{0.1, 0.05, 1e-4};
         // Slide, stick for T, slide again: peak ratio after the stick.
         auto peakAfterStick = [&](double T) {
             std::vector<double> t, g;

@@ -8,7 +8,7 @@ using namespace stickslip::identify;
 namespace {
 
 void expectFound(const ExtendedModel& truth, unsigned seed, const std::string& name) {
-    auto runs = synth::makeRuns(truth, 3.0, 0.02, seed);
+    auto runs = synth::makeRuns(truth, 2.0, 0.02, seed);
     const IdentifyResult r = identifyEffects(runs, synth::testOptions());
     QVERIFY2(r.ok, r.message.c_str());
     QVERIFY2(!r.effectsAdded.empty(), ("nothing added; expected " + name).c_str());
@@ -24,7 +24,7 @@ class TestIdentifyContact : public QObject {
 private slots:
     void findsStickHealing() {
         auto m = synth::trueModel();
-        m.effects.stickHealing = StickHealing{0.08, 0.05};
+        m.effects.stickHealing = StickHealing{0.08, 0.05, 2e-4};
         expectFound(m, 11, "stick_healing");
     }
     void findsBacklash() {

@@ -10,7 +10,7 @@ using namespace stickslip::identify;
 namespace {
 
 IdentifyResult runLoop(const ExtendedModel& truth, unsigned seed) {
-    auto runs = synth::makeRuns(truth, 3.0, 0.02, seed);
+    auto runs = synth::makeRuns(truth, 2.0, 0.02, seed);
     return identifyEffects(runs, synth::testOptions());
 }
 

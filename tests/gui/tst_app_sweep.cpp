@@ -122,9 +122,10 @@ private slots:
         while (wall.elapsed() < 1000) QTest::qWait(20);   // the GUI thread only waits and ticks
         QVERIFY(c.isBusy(JobKind::Sweep));                // 10 000 cycles take far longer than 1 s
         QVERIFY(finished.isEmpty());
-        // 1 s of 10 ms ticks is 100; demand 30 so a loaded CI machine (or ASan) passes, while
-        // a GUI thread blocked by the computation would show (almost) none.
-        QVERIFY2(ticks >= 30, qPrintable(QString::number(ticks)));
+        // 1 s of 10 ms ticks is 100 (about 50 were seen while compilers shared the 2 cores);
+        // demand 20 so a loaded CI machine (or ASan) passes, while a GUI thread blocked by the
+        // computation would show (almost) none.
+        QVERIFY2(ticks >= 20, qPrintable(QString::number(ticks)));
 
         // Cancel: the core polls the token every 4096 steps (≈ 1.5 ms in Release at
         // dt = T/10 000, ~20 ms even if ASan slows it 10×), then the outcome comes back

@@ -1,7 +1,9 @@
 // The real main window, offscreen: a slider change reaches the plots (compared with a direct
 // core run), presets switch, failures are reported in words, every view exports to PNG, SVG,
 // PDF and CSV, a measured CSV is overlaid by column name, and a session round-trips.
+#include <QComboBox>
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QFile>
 #include <QSignalSpy>
 #include <QSlider>

@@ -37,8 +37,8 @@ std::vector<Entry> registry() {
                                           [](const auto& e) { return std::vector<double>{e.mu_pos_minus_mu_neg}; }));
     r.push_back(entry<WearDrift>(&EffectSet::wearDrift, [](const auto& v) { return WearDrift{v[0]}; },
                                  [](const auto& e) { return std::vector<double>{e.dmu_ds_per_m}; }));
-    r.push_back(entry<StickHealing>(&EffectSet::stickHealing, [](const auto& v) { return StickHealing{v[0], v[1]}; },
-                                    [](const auto& e) { return std::vector<double>{e.dmu_static, e.tau_heal_s}; }));
+    r.push_back(entry<StickHealing>(&EffectSet::stickHealing, [](const auto& v) { return StickHealing{v[0], v[1], v[2]}; },
+                                    [](const auto& e) { return std::vector<double>{e.dmu_static, e.tau_heal_s, e.Dh_m}; }));
     r.push_back(entry<Backlash>(&EffectSet::backlash, [](const auto& v) { return Backlash{v[0]}; },
                                 [](const auto& e) { return std::vector<double>{e.halfWidth_m}; }));
     r.push_back(entry<PreslidingCompliance>(&EffectSet::preslidingCompliance,
