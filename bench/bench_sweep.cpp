@@ -27,6 +27,15 @@ double seconds(std::chrono::steady_clock::time_point a) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
 }
 
+// CPU time of the process (user + system) [s]: on a shared, loaded machine the wall time
+// depends on what else runs; the CPU time does not (much).
+double cpuSeconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 long peakRssKiB() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
@@ -93,14 +102,16 @@ int main(int argc, char** argv) {
         o.sampleCycles = 100;
         o.stepsPerPeriod = n;
         const auto t0 = std::chrono::steady_clock::now();
+        const double c0 = cpuSeconds();
         const SweepResult r = bifurcationSweep(pr.params, o);
-        const double wall = seconds(t0);
+        const double wall = seconds(t0), cpu = cpuSeconds() - c0;
         const double steps = 2.0 * values * 150.0 * static_cast<double>(n);
         std::printf("Fig. 20 continuation sweep (fig20 preset, eps_T = 1.1e4 N/m): A 0.1-5 mm, %d values, "
                     "50 settle + 100 sampled cycles, up and down, T/%ld\n",
                     values, n);
         std::printf("  status %s%s\n", toString(r.status), r.message.empty() ? "" : (" (" + r.message + ")").c_str());
-        std::printf("  wall time %.2f s, %.3g steps, %.1f ns per step\n", wall, steps, wall / steps * 1e9);
+        std::printf("  wall time %.2f s, CPU time %.2f s, %.3g steps, %.1f ns (CPU) per step\n", wall, cpu, steps,
+                    cpu / steps * 1e9);
         std::printf("  closed-form stick threshold A_s = %.4f mm\n", stickThresholdAmplitude(pr.params) * 1e3);
         printWindows(r, +1);
         printWindows(r, -1);
@@ -115,12 +126,13 @@ int main(int argc, char** argv) {
         o.cycles = sectionPoints;
         const long before = peakRssKiB();
         const auto t0 = std::chrono::steady_clock::now();
+        const double c0 = cpuSeconds();
         const PoincareSection s = poincareSection(pr.params, o);
-        const double wall = seconds(t0);
+        const double wall = seconds(t0), cpu = cpuSeconds() - c0;
         std::printf("Poincare section, Fig. 22 set (A = %.2f mm): %ld points after 50 settle cycles, T/%ld\n",
                     pr.params.drive.amplitude_m * 1e3, sectionPoints, n);
         std::printf("  status %s, %zu points\n", toString(s.status), s.size());
-        std::printf("  wall time %.2f s, peak RSS %.1f MB (before the section: %.1f MB)\n", wall,
+        std::printf("  wall time %.2f s, CPU time %.2f s, peak RSS %.1f MB (before the section: %.1f MB)\n", wall, cpu,
                     peakRssKiB() / 1024.0, before / 1024.0);
     }
     return 0;

@@ -45,8 +45,8 @@ QString csvField(const QString& s) {
 QString num(double v) { return QString::number(v, 'g', 17); }
 
 void configure(QwtPlotRenderer& r) {
-    // Paper-like documents: white background, no widget frames.
-    r.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
+    // Paper-like documents: white page (the widget's grey background is dropped).
+    r.setDiscardFlag(QwtPlotRenderer::DiscardBackground, true);
     r.setDiscardFlag(QwtPlotRenderer::DiscardCanvasBackground, false);
     r.setDiscardFlag(QwtPlotRenderer::DiscardCanvasFrame, false);
     r.setLayoutFlag(QwtPlotRenderer::FrameWithScales, true);

@@ -167,7 +167,26 @@ bool PlotWidget::exportTo(const QString& path, QString* error) const {
     return exportPlot(plot_, path, error);
 }
 
+// Consistent, compact typography: plain axis titles, a bold but modest plot title.
+void PlotWidget::applyFonts() {
+    QFont base = font();
+    base.setPointSizeF(9.0);
+    QFont titleFont = base;
+    titleFont.setPointSizeF(10.0);
+    titleFont.setBold(true);
+    for (int axis = 0; axis < QwtPlot::axisCnt; ++axis) {
+        plot_->setAxisFont(axis, base);
+        QwtText t = plot_->axisTitle(axis);
+        t.setFont(base);
+        plot_->setAxisTitle(axis, t);
+    }
+    QwtText title = plot_->title();
+    title.setFont(titleFont);
+    plot_->setTitle(title);
+}
+
 void PlotWidget::rescale() {
+    applyFonts();
     for (int axis = 0; axis < QwtPlot::axisCnt; ++axis) plot_->setAxisAutoScale(axis, true);
     plot_->replot();
     zoomer_->setZoomBase(false);

@@ -85,6 +85,7 @@ protected:
         yFactor_ = yFactor;
     }
     void removeCurvesWithPrefix(const QString& prefix);
+    void applyFonts();
 
     QwtPlot* plot_ = nullptr;
     QwtPlotZoomer* zoomer_ = nullptr;

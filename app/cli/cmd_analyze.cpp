@@ -51,14 +51,29 @@ bool commentValue(const io::CsvTable& t, const std::string& key, double& v) {
     return false;
 }
 
-std::vector<double> centralDifference(const std::vector<double>& y, double fs) {
+// Derivative by the centred difference over ±h samples (h = 1: the plain central
+// difference; larger h low-passes measurement noise), one-sided at the ends.
+std::vector<double> centralDifference(const std::vector<double>& y, double fs, std::size_t h = 1) {
     const std::size_t n = y.size();
     std::vector<double> d(n, 0.0);
     if (n < 2) return d;
-    for (std::size_t i = 1; i + 1 < n; ++i) d[i] = 0.5 * (y[i + 1] - y[i - 1]) * fs;
-    d[0] = (y[1] - y[0]) * fs;
-    d[n - 1] = (y[n - 1] - y[n - 2]) * fs;
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t a = i >= h ? i - h : 0, b = std::min(n - 1, i + h);
+        d[i] = (y[b] - y[a]) * fs / static_cast<double>(b - a);
+    }
     return d;
+}
+
+// Centred moving average over ±h samples (window shrinks at the ends).
+std::vector<double> movingAverage(const std::vector<double>& y, std::size_t h) {
+    const std::size_t n = y.size();
+    std::vector<double> out(n, 0.0), cum(n + 1, 0.0);
+    for (std::size_t i = 0; i < n; ++i) cum[i + 1] = cum[i] + y[i];
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t a = i >= h ? i - h : 0, b = std::min(n - 1, i + h);
+        out[i] = (cum[b + 1] - cum[a]) / static_cast<double>(b - a + 1);
+    }
+    return out;
 }
 
 // Stroboscopic series: y linearly interpolated at t0 + k T.
@@ -119,7 +134,11 @@ void runAnalyze(const AnalyzeOptions& o, int& exitCode) {
     std::string fSource = "option";
     if (!(f > 0) && commentValue(t, "f", f)) fSource = "file";
     if (!(f > 0) && stage) {
-        const PowerSpectrum ps = powerSpectrum(*stage, fs);
+        // One segment as long as possible: the finest resolution for the frequency estimate.
+        WelchOptions w;
+        w.segmentLength = 16;
+        while (w.segmentLength * 2 <= n) w.segmentLength *= 2;
+        const PowerSpectrum ps = powerSpectrum(*stage, fs, w);
         const auto pk = ps.ok ? spectrumPeaks(ps, 1) : std::vector<SpectralPeak>{};
         if (!pk.empty()) { f = pk[0].frequency_Hz; fSource = "stage spectrum peak"; }
     }
@@ -169,14 +188,19 @@ void runAnalyze(const AnalyzeOptions& o, int& exitCode) {
         j["phase_lag"] = pl;
     }
 
-    // Relative velocity and friction ratio for the loops.
+    // Relative velocity and friction ratio for the loops. A velocity differentiated from
+    // measured displacements is noisy: difference over ±h samples, h ≈ 1/40 of a forcing period
+    // (a low-pass well above the forcing frequency), and average the ratio over the same window.
     std::vector<double> V, rho;
+    const std::size_t h = f > 0 ? std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(fs / (40.0 * f)))) : 1;
+    bool derived = false;
     if (const auto* v = col(t, "rel_vel_mps")) { V = *v; used["rel_vel"] = "rel_vel_mps"; }
     else if (const auto* sv = col(t, "stage_vel_mps")) {
         V = *sv;
         if (slider) {
-            const auto xd = centralDifference(*slider, fs);
+            const auto xd = centralDifference(*slider, fs, h);
             for (std::size_t i = 0; i < n; ++i) V[i] -= xd[i];
+            derived = true;
             used["rel_vel"] = "stage_vel_mps - d/dt slider_disp_m";
         } else {
             used["rel_vel"] = "stage_vel_mps";
@@ -184,7 +208,8 @@ void runAnalyze(const AnalyzeOptions& o, int& exitCode) {
     } else if (stage) {
         std::vector<double> g = *stage;
         if (slider) for (std::size_t i = 0; i < n; ++i) g[i] -= (*slider)[i];
-        V = centralDifference(g, fs);
+        V = centralDifference(g, fs, h);
+        derived = true;
         used["rel_vel"] = slider ? "d/dt (stage_disp_m - slider_disp_m)" : "d/dt stage_disp_m";
     }
     if (const auto* r = col(t, "friction_ratio")) { rho = *r; used["friction_ratio"] = "friction_ratio"; }
@@ -200,13 +225,26 @@ void runAnalyze(const AnalyzeOptions& o, int& exitCode) {
             used["friction_ratio"] = "friction_force_N (no normal force column)";
         }
     }
+    if (derived && !rho.empty()) {
+        rho = movingAverage(rho, h);
+        used["smoothing_half_window_samples"] = h;
+    }
+    if (!V.empty() && !rho.empty()) {
+        const FrictionLoops fl = frictionLoops(*time, V, rho);
+        j["loops"] = {{"excursions", fl.signedArea.size()},
+                      {"clockwise", fl.clockwise},
+                      {"counter_clockwise", fl.counterClockwise},
+                      {"degenerate", fl.degenerate},
+                      {"definition", "one loop per slip excursion (one sign of V), |V| below 10 % of its peak left out"},
+                      {"axes", "relative velocity (x) vs friction ratio (y)"}};
+    }
     if (!V.empty() && !rho.empty() && f > 0) {
         const LoopOrientation lo = frictionLoopOrientation(*time, V, rho, 1.0 / f);
-        j["loops"] = {{"cycles", lo.signedArea.size()},
-                      {"clockwise", lo.clockwise},
-                      {"counter_clockwise", lo.counterClockwise},
-                      {"degenerate", lo.degenerate},
-                      {"axes", "relative velocity (x) vs friction ratio (y)"}};
+        j["cycle_loops"] = {{"cycles", lo.signedArea.size()},
+                            {"clockwise", lo.clockwise},
+                            {"counter_clockwise", lo.counterClockwise},
+                            {"degenerate", lo.degenerate},
+                            {"definition", "one closed curve per forcing cycle, elastic reversals included"}};
     }
 
     // 0–1 test on the stroboscopic (one per forcing period) slider displacement.

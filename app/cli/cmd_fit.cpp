@@ -1,6 +1,7 @@
 // `stickslip-cli fit`: read measured runs, clean them as the paper did, fit the rate-state
 // and/or Coulomb law with Ceres, and write a JSON report (and optionally the residuals).
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -104,8 +105,6 @@ void runFit(const FitOptions& o, int& exitCode) {
         if (!dopt.mapping.addColumns(c, &why)) return fail(why, kBadArguments);
     for (const auto& u : o.units)
         if (!dopt.mapping.addUnits(u, &why)) return fail(why, kBadArguments);
-    const bool runSetProblem = false;
-    (void)runSetProblem;
     io::Dataset fitData, valData;
     io::DatasetError derr;
     if (!io::loadDataset(o.data, dopt, fitData, derr))
@@ -180,8 +179,12 @@ void runFit(const FitOptions& o, int& exitCode) {
         std::string e;
         if (eq == std::string::npos) return fail("--set " + kv + ": expected KEY=VALUE", kBadArguments);
         const std::string key = kv.substr(0, eq);
-        if (key == "zeta") v = std::stod(kv.substr(eq + 1));
-        else if (!io::parseParamValue(key, kv.substr(eq + 1), v, &e)) return fail("--set " + kv + ": " + e, kBadArguments);
+        if (key == "zeta") {
+            char* end = nullptr;
+            const std::string txt = kv.substr(eq + 1);
+            v = std::strtod(txt.c_str(), &end);
+            if (end == txt.c_str() || *end != '\0' || !(v >= 0.0)) return fail("--set " + kv + ": zeta must be a number >= 0", kBadArguments);
+        } else if (!io::parseParamValue(key, kv.substr(eq + 1), v, &e)) return fail("--set " + kv + ": " + e, kBadArguments);
         st.start[key] = v;
     }
     for (const std::string& n : st.free) {

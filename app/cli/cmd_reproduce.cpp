@@ -2,7 +2,10 @@
 // numerical figures (Figs 19-23, ../shared/MODEL.md) and writes its data as CSV and the
 // figure as SVG and PNG, rendered headless (offscreen Qt platform) with the same plot widgets
 // the app uses. The resolution is deliberately coarser than the paper's by default so a run
-// finishes in about a minute; every knob is an option (see --help and README).
+// finishes in about a minute; every knob is an option (see --help and README). Defaults:
+// 100 values of A from 0.1 to 5 mm, continuation upwards, 40 settle + 40 sampled cycles per
+// value, T/4000 steps; Figs 22/23 a 40-cycle run (after 40 settle cycles) and a 2000-point
+// Poincaré section (the paper's Fig. 22b has 40 000: pass --section-points 40000).
 //
 //   19, 20: continuation bifurcation sweeps in A (rate-state and Coulomb side by side).
 //   22:     A = 0.40 mm: phase portrait, Poincaré section, spectrum, autocorrelation.
@@ -48,15 +51,15 @@ struct ReproduceOptions {
     int figure = 0;
     std::string out;
     std::vector<std::string> sets;   // KEY=VALUE overrides of the figure's preset
-    int steps = 40;                  // swept A values (paper: a slow continuous sweep)
+    int steps = 100;                 // swept A values (paper: a slow continuous sweep)
     double from_m = 0.1e-3;          // sweep start [m]
     double to_m = 5.0e-3;            // sweep end [m]
     std::string direction = "up";    // up | down | both
-    long settle = 30;                // settle cycles per swept value / before a section
-    long samples = 30;               // Poincaré samples per swept value
-    long stepsPerPeriod = 2000;      // N: dt = T/N (the presets use 10 000)
+    long settle = 40;                // settle cycles per swept value / before a section
+    long samples = 40;               // Poincaré samples per swept value
+    long stepsPerPeriod = 4000;      // N: dt = T/N (the presets use 10 000)
     long cycles = 40;                // recorded cycles for phase portraits and spectra
-    long sectionPoints = 1000;       // Poincaré points for Figs 22/23 (paper: 40 000)
+    long sectionPoints = 2000;       // Poincaré points for Figs 22/23 (paper: 40 000)
     bool coulomb = true;             // also the Coulomb model for Figs 19/20
     int threads = 0;                 // unused by continuation; kept for symmetry with sweep
 };
@@ -65,7 +68,7 @@ struct ReproduceOptions {
 RunControl progressTo(const std::string& what) {
     RunControl ctl;
     ctl.progress = [what, last = -1](double f) mutable {
-        const int pct = static_cast<int>(std::floor(100.0 * f));
+        const int pct = 10 * static_cast<int>(std::floor(10.0 * f));
         if (pct != last) {
             last = pct;
             std::cerr << "\r  " << what << ": " << pct << " %" << std::flush;
@@ -330,16 +333,22 @@ void runFigure(const ReproduceOptions& o, int& exitCode) {
     widgets::PhasePortraitPlot phase;
     phase.setRun(run);
     phase.plot()->setTitle(QString::fromStdString(fig) + QStringLiteral(" phase portrait, ") + at);
+    phase.rescale();
     widgets::PoincarePlot poincare;
     poincare.setSection(sec);
     poincare.plot()->setTitle(QStringLiteral("Poincaré section (%1 points)").arg(sec.size()));
+    poincare.rescale();
     widgets::SpectrumPlot spectrum;
     spectrum.setValueTitle(QStringLiteral("PSD of slider x [m²/Hz]"));
     spectrum.setSpectrum(psd.frequency_Hz, psd.psd);
     spectrum.plot()->setTitle(QStringLiteral("Spectrum of x (Welch, Hann)"));
+    spectrum.rescale();
+    spectrum.plot()->setAxisScale(QwtPlot::xBottom, 0.0, 12.0 * base.drive.frequency_Hz);   // up to the 12th harmonic
+    spectrum.plot()->replot();
     widgets::AutocorrelationPlot autocorr;
     autocorr.setAutocorrelation(ac.lag_s, ac.r);
     autocorr.plot()->setTitle(QStringLiteral("Autocorrelation of x"));
+    autocorr.rescale();
 
     if (o.figure == 22) {
         exportFigure({phase.plot(), poincare.plot(), spectrum.plot(), autocorr.plot()}, 2, QSizeF(240, 170), stem,

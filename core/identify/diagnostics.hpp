@@ -25,6 +25,8 @@ struct DiagnosticRun {
 // Names of the candidate signals, in report order:
 // signV V absV dVdt accel displacement time_since_reversal time_stuck_before_slip
 // accumulated_slip tN run_index cycle_index
+// (identify adds eom_slider_velocity and eom_slider_accel for dynamics runs: the correlation
+// of the equation-of-motion residual F − m ẍ − c ẋ − k x with ẋ and ẍ.)
 std::vector<std::string> candidateSignalNames();
 // Every candidate signal of a run, in candidateSignalNames() order, one value per sample.
 // "stuck" is |V| below stickVelocity_mps.

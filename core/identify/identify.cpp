@@ -369,7 +369,27 @@ Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome&
     const double fs = cx.runs.empty() || cx.runs[0].size() < 2 ? 1.0 : 1.0 / (cx.runs[0].t[1] - cx.runs[0].t[0]);
     // Decimate to about 2× the 100 Hz measurement bandwidth before the whiteness test.
     const int dec = std::max(1, static_cast<int>(std::floor(fs / 200.0)));
-    return diagnose(dr, dec, cx.opt->stickVelocity_mps);
+    Diagnostics d = diagnose(dr, dec, cx.opt->stickVelocity_mps);
+    if (cx.anyDynamics) {
+        // Equation-of-motion channel: its residual against the slider velocity and acceleration
+        // (where rig damping and sensor inertia show).
+        std::vector<double> rr, xd, xa;
+        const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
+        const double ms = m.effects.sensorInertia ? m.effects.sensorInertia->mass_kg : 0.0;
+        for (const Prepared& p : cx.runs) {
+            if (p.run->setup != SetupKind::Dynamics) continue;
+            const double mm = std::isfinite(mass) ? mass : p.run->nominalMass_kg;
+            const double c = 2.0 * zeta * std::sqrt(p.run->stiffness_N_per_m * mm);
+            for (size_t i = 0; i < p.size(); ++i) {
+                rr.push_back(p.F[i] - ((mm + ms) * p.a[i] + c * p.xd[i] + p.run->stiffness_N_per_m * p.x[i]));
+                xd.push_back(p.xd[i]);
+                xa.push_back(p.a[i]);
+            }
+        }
+        d.correlations.push_back({"eom_slider_velocity", pearson(rr, xd)});
+        d.correlations.push_back({"eom_slider_accel", pearson(rr, xa)});
+    }
+    return d;
 }
 
 // Penalised criterion with the effective number of independent residuals n_eff. The residual

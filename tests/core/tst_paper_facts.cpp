@@ -173,6 +173,23 @@ private slots:
         QVERIFY(zg.ok);
         QVERIFY2(zg.K < 0.2, qPrintable(QString::number(zg.K)));
     }
+    // Fig. 19: for k = 410 N/m the paper reports no bifurcation at all. Here the closed-form
+    // stick threshold is ≈ 7.2 mm (k − m ω² is only ≈ 222 N/m) and every amplitude in the
+    // paper's 1–9 mm range gives permanent stick or period-1 motion: no bifurcation either.
+    void softBeamHasNoBifurcation() {
+        SimParams p = preset("fig19");
+        setParam(p, "k", 410.0);
+        setParam(p, "c", dampingFromRatio(0.005, 410.0, p.rig.mass_kg));
+        const double As = stickThresholdAmplitude(p);
+        QVERIFY(As > 7.0e-3 && As < 7.4e-3);
+        const SweepResult r = runAt(p, {1e-3, 3e-3, 5e-3, 7e-3, 9e-3}, 60, 40, false);
+        for (const auto& pt : r.points) {
+            qInfo("k = 410: %s", qPrintable(describe(pt)));
+            QVERIFY2(pt.classification.period == 1, qPrintable(describe(pt)));
+        }
+        QVERIFY(r.points[0].classification.motion == MotionClass::Stick);
+        QVERIFY(r.points[4].classification.motion == MotionClass::Periodic);
+    }
     // Fact 6 (Fig. 17): under prescribed slip the rate-state law traces only clockwise
     // F/t_N–V loops; the Coulomb law traces flat (degenerate) ones.
     void rateStateLoopsAreClockwise() {

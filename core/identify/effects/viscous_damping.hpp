@@ -26,7 +26,7 @@ struct ViscousDamping {
                 "Residual proportional to the velocity: in the equation of motion (F - m x'' - k x) "
                 "correlates with the slider velocity; in the friction channel with V.",
                 {{"zeta", "-", 0.02, 0.0, 2.0, false}},
-                {"V"},
+                {"V", "eom_slider_velocity"},
                 {true, true}};
     }
 };
