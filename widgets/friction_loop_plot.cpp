@@ -23,61 +23,65 @@ FrictionLoopPlot::FrictionLoopPlot(QWidget* parent) : PlotWidget(parent) {
     updateSummary();
 }
 
-void FrictionLoopPlot::setRun(const RunResult& run, double period_s, LawKind law) {
+void FrictionLoopPlot::setRun(const RunResult& run, LawKind law) {
     const int slot = style::slot(law);
     removeCurvesWithPrefix(modelLabel(law) + QLatin1Char(':'));
     marks_[slot].clear();
     const auto& samples = run.samples;
-    if (!samples.empty() && period_s > 0) {
+    if (!samples.empty()) {
         std::vector<double> t, v, rho;
         t.reserve(samples.size());
         v.reserve(samples.size());
         rho.reserve(samples.size());
+        QVector<QPointF> all;
+        all.reserve(static_cast<int>(samples.size()));
         for (const Sample& s : samples) {
             t.push_back(s.t_s);
             v.push_back(s.relVel_mps);
             rho.push_back(s.ratio);
+            all.append(QPointF(s.relVel_mps, s.ratio));
         }
-        const LoopOrientation lo = frictionLoopOrientation(t, v, rho, period_s);
-        const double t0 = samples.front().t_s;
+        auto* bg = addCurve(modelLabel(law) + QStringLiteral(": trajectory"),
+                            QPen(QColor(190, 190, 190), 0.8, style::modelPenStyle(law)));
+        bg->setSamples(all);
+        bg->setZ(10);
+
+        const FrictionLoops loops = frictionLoops(t, v, rho);
+        const LoopOptions opt;
         size_t i = 0;
-        for (size_t k = 0; k < lo.signedArea.size(); ++k) {
+        for (size_t k = 0; k < loops.signedArea.size(); ++k) {
             LoopMark m;
-            m.cycle = static_cast<int>(k);
-            m.t0_s = lo.cycleStart_s[k];
-            m.t1_s = m.t0_s + period_s;
-            m.signedArea = lo.signedArea[k];
-            // Same degeneracy rule as the core: |area| ≤ 1e-3 × the loop's bounding box.
+            m.index = static_cast<int>(k);
+            m.sign = loops.sign[k];
+            m.t0_s = loops.start_s[k];
+            m.signedArea = loops.signedArea[k];
+            // The excursion: from its start while V keeps its sign.
+            while (i < samples.size() && samples[i].t_s < m.t0_s) ++i;
             QVector<QPointF> pts;
             double vmin = INFINITY, vmax = -INFINITY, rmin = INFINITY, rmax = -INFINITY;
-            while (i < samples.size() && samples[i].t_s < m.t0_s - 1e-12) ++i;
             size_t j = i;
-            for (; j < samples.size() && samples[j].t_s <= m.t1_s + 1e-12; ++j) {
+            for (; j < samples.size() && (samples[j].relVel_mps > 0 ? 1 : (samples[j].relVel_mps < 0 ? -1 : 0)) == m.sign;
+                 ++j) {
                 pts.append(QPointF(samples[j].relVel_mps, samples[j].ratio));
                 vmin = std::min(vmin, samples[j].relVel_mps);
                 vmax = std::max(vmax, samples[j].relVel_mps);
                 rmin = std::min(rmin, samples[j].ratio);
                 rmax = std::max(rmax, samples[j].ratio);
             }
+            m.t1_s = samples[j > i ? j - 1 : i].t_s;
+            i = j;
+            // Same degeneracy rule as the core (bounding box of the excursion).
             const double box = (vmax - vmin) * (rmax - rmin);
-            m.orientation = std::abs(m.signedArea) <= 1e-3 * box ? 0 : (m.signedArea < 0 ? -1 : +1);
+            m.orientation =
+                !(box > 0) || std::abs(m.signedArea) <= opt.degenerateFraction * box ? 0 : (m.signedArea < 0 ? -1 : +1);
             marks_[slot].push_back(m);
             const QString kind = m.orientation < 0 ? QStringLiteral("cw")
                                                    : (m.orientation > 0 ? QStringLiteral("ccw") : QStringLiteral("flat"));
             const QColor color = m.orientation < 0 ? style::clockwise()
                                                    : (m.orientation > 0 ? style::counterClockwise() : QColor(120, 120, 120));
-            auto* c = addCurve(QStringLiteral("%1: cycle %2 %3").arg(modelLabel(law)).arg(k).arg(kind), law, color);
+            auto* c = addCurve(QStringLiteral("%1: loop %2 %3").arg(modelLabel(law)).arg(k).arg(kind), law, color);
             c->setSamples(pts);
-            c->setItemAttribute(QwtPlotItem::Legend, false);
-        }
-        // The tail after the last complete cycle (grey).
-        const double tTail = t0 + static_cast<double>(lo.signedArea.size()) * period_s;
-        QVector<QPointF> tail;
-        for (const Sample& s : samples)
-            if (s.t_s >= tTail - 1e-12) tail.append(QPointF(s.relVel_mps, s.ratio));
-        if (tail.size() > 1) {
-            auto* c = addCurve(modelLabel(law) + QStringLiteral(": partial"), law, QColor(170, 170, 170));
-            c->setSamples(tail);
+            c->setZ(20);
             c->setItemAttribute(QwtPlotItem::Legend, false);
         }
     }
@@ -120,6 +124,7 @@ void FrictionLoopPlot::updateSummary() {
         if (flat > 0) line += QStringLiteral(", %1 flat").arg(flat);
         lines << line;
     }
+    if (!lines.isEmpty()) lines.prepend(QStringLiteral("slip loops (grey: stick and reversals)"));
     QwtText text(lines.isEmpty() ? QString() : lines.join(QStringLiteral("<br>")), QwtText::RichText);
     text.setRenderFlags(Qt::AlignLeft | Qt::AlignTop);
     QFont f = font();

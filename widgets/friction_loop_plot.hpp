@@ -1,6 +1,8 @@
-// F/t_N versus relative velocity V (paper Figs 8, 17), one closed loop per forcing cycle,
-// coloured by its orientation: clockwise (blue) or counter-clockwise (red). The rate-state law
-// only gives clockwise loops; measured ones can be counter-clockwise (MODEL.md fact 6).
+// F/t_N versus relative velocity V (paper Figs 8, 17). The paper's loops are the slip
+// excursions (one sign of V between reversals, core frictionLoops): each is drawn coloured by
+// its orientation, clockwise (blue) or counter-clockwise (red), over the whole trajectory in
+// light grey (stick and elastic reversal segments). The rate-state law only gives clockwise
+// loops; measured ones can be counter-clockwise (MODEL.md fact 6).
 #pragma once
 
 #include "core/integrate/run_result.hpp"
@@ -10,11 +12,12 @@ class QwtPlotTextLabel;
 
 namespace stickslip::widgets {
 
-// Orientation of one cycle's loop in the (V, F/t_N) plane (x right, y up).
+// Orientation of one slip excursion's loop in the (V, F/t_N) plane (x right, y up).
 struct LoopMark {
-    int cycle = 0;             // 0-based cycle index within the run
-    double t0_s = 0, t1_s = 0; // the cycle's time span
-    double signedArea = 0;     // shoelace area [m/s · 1] (core frictionLoopOrientation); > 0 counter-clockwise
+    int index = 0;             // 0-based excursion index within the run
+    int sign = 0;              // sign of V during the excursion (+1 / −1)
+    double t0_s = 0, t1_s = 0; // the excursion's time span
+    double signedArea = 0;     // shoelace area closed by the chord [m/s · 1] (core frictionLoops); > 0 ccw
     int orientation = 0;       // −1 clockwise, +1 counter-clockwise, 0 degenerate (|area| ≤ 1e-3 × bounding box)
 };
 
@@ -23,10 +26,11 @@ class FrictionLoopPlot : public PlotWidget {
 public:
     explicit FrictionLoopPlot(QWidget* parent = nullptr);
 
-    // One curve per complete cycle: "<model>: cycle N cw" / "… ccw" / "… flat"; cycles counted
-    // from the first sample (an incomplete last cycle is drawn grey: "<model>: partial").
-    // The orientation comes from core frictionLoopOrientation (analysis/loop_orientation.hpp).
-    void setRun(const RunResult& run, double period_s, LawKind law = LawKind::RateState);
+    // Curves "<model>: trajectory" (grey, everything) and one per complete slip excursion,
+    // "<model>: loop N cw" / "… ccw" / "… flat" (partial first/last excursions are not marked).
+    void setRun(const RunResult& run, LawKind law = LawKind::RateState);
+    // Same; the forcing period is not needed for the excursion loops (kept for symmetry).
+    void setRun(const RunResult& run, double /*period_s*/, LawKind law = LawKind::RateState) { setRun(run, law); }
     const std::vector<LoopMark>& loopMarks(LawKind law) const;
 
     void clearModel(LawKind law) override;

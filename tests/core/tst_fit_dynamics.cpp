@@ -103,5 +103,13 @@ private slots:
     }
 };
 
-QTEST_GUILESS_MAIN(TstFitDynamics)
+// QTEST_GUILESS_MAIN with a longer per-function watchdog than Qt's default 300 s: these fits
+// need ~20 s of CPU, which a loaded machine (or a sanitizer build) can stretch past 5 minutes.
+int main(int argc, char** argv) {
+    if (qEnvironmentVariableIsEmpty("QTEST_FUNCTION_TIMEOUT")) qputenv("QTEST_FUNCTION_TIMEOUT", "1800000");
+    QCoreApplication app(argc, argv);
+    TstFitDynamics tc;
+    QTEST_SET_MAIN_SOURCE_PATH
+    return QTest::qExec(&tc, argc, argv);
+}
 #include "tst_fit_dynamics.moc"

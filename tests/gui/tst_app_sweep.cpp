@@ -16,6 +16,7 @@
 #include "sweep_dialogs.hpp"
 #include "view_set.hpp"
 #include "widgets/bifurcation_plot.hpp"
+#include "widgets/periodicity_map_plot.hpp"
 
 using namespace stickslip;
 using namespace stickslip::gui;
@@ -96,6 +97,37 @@ private slots:
             if (pt.value > As + 0.02e-3) QVERIFY(pt.classification.motion != MotionClass::Stick);
         }
         QCOMPARE(views.bifurcation()->pointCount(), 4 * 6);
+    }
+
+    void periodicityMapThroughTheDialog() {
+        SimulationController c;
+        QWidget host;
+        ViewSet views(&host);
+        connect(&c, &SimulationController::mapFinished, &views, &ViewSet::showMap);
+        MapDialog dialog(&c, [] { return fig20(); });
+        QSignalSpy finished(&c, &SimulationController::mapFinished);
+        // Replace the dialog's defaults by a 2 × 2 grid: A ∈ {0.1, 1} mm × f ∈ {3, 4} Hz.
+        MapOptions o;
+        o.key1 = "A"; o.from1 = 0.1e-3; o.to1 = 1e-3; o.steps1 = 2;
+        o.key2 = "f"; o.from2 = 3.0; o.to2 = 4.0; o.steps2 = 2;
+        o.settleCycles = 5;
+        o.sampleCycles = 8;
+        c.startMap(fig20(), o);
+        QVERIFY(finished.wait(120000));
+        const auto out = finished.at(0).at(0).value<MapOutcome>();
+        QVERIFY2(out.map.ok(), out.map.message.c_str());
+        QCOMPARE(out.map.motion.size(), size_t(4));
+        // Far below the ≈ 0.33 mm stick threshold: permanent stick; at 1 mm it slips.
+        QVERIFY(out.map.motion[out.map.index(0, 0)] == MotionClass::Stick);
+        QVERIFY(out.map.motion[out.map.index(0, 1)] == MotionClass::Stick);
+        QVERIFY(out.map.motion[out.map.index(1, 0)] != MotionClass::Stick);
+        const auto* plot = views.periodicityMap();
+        QCOMPARE(plot->grid().nx, 2);
+        QCOMPARE(plot->grid().ny, 2);
+        QCOMPARE(plot->grid().at(0, 0), widgets::kMapStick);
+        QVERIFY(plot->grid().at(1, 0) != widgets::kMapStick && plot->grid().at(1, 0) != widgets::kMapMissing);
+        // The dialog's own options are valid for the preset (what "Run" would start).
+        QVERIFY(dialog.options().validate(fig20().params).empty());
     }
 
     void eventLoopTurnsAndCancelIsPrompt() {

@@ -4,7 +4,10 @@
 #include <QComboBox>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
+#include <QApplication>
+#include <QDropEvent>
 #include <QFile>
+#include <QMimeData>
 #include <QSignalSpy>
 #include <QSlider>
 #include <QTemporaryDir>
@@ -198,6 +201,16 @@ private slots:
         w->views()->clearMeasured();
         QVERIFY(!w->views()->timeSeries()->curve("measured: stage_disp_m"));
         QVERIFY(w->views()->timeSeries()->curve("rate-state: slider x"));
+        // Drag and drop of the same file onto the window overlays it too.
+        QMimeData mime;
+        mime.setUrls({QUrl::fromLocalFile(path)});
+        QDropEvent drop(QPointF(200, 200), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+        // Delivered straight to the window's handler (QApplication::notify only forwards a
+        // drop after a real drag entered the widget).
+        static_cast<QObject*>(w)->event(&drop);
+        QVERIFY(drop.isAccepted());
+        QVERIFY(w->views()->timeSeries()->curve("measured: stage_disp_m"));
+        w->views()->clearMeasured();
     }
 
     void sessionSaveAndLoad() {

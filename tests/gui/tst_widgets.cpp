@@ -241,28 +241,36 @@ void TestWidgets::loopOrientationMarksClockwise() {
     FrictionLoopPlot w;
     w.setRun(ellipseRun(true, 3, T, 200), T);
     const auto& marks = w.loopMarks(LawKind::RateState);
-    QCOMPARE(marks.size(), size_t(3));
-    for (const LoopMark& m : marks) {
+    // V = 0.05 cos(2πt/T) from its maximum: the first and last (partial) half-cycles are not
+    // loops; the 5 complete slip excursions in between are, alternating in the sign of V.
+    QCOMPARE(marks.size(), size_t(5));
+    for (size_t k = 0; k < marks.size(); ++k) {
+        const LoopMark& m = marks[k];
         QCOMPARE(m.orientation, -1);
         QVERIFY(m.signedArea < 0);
-        // Ellipse area π a b with a = 0.05, b = 0.1.
-        QVERIFY(std::abs(std::abs(m.signedArea) - M_PI * 0.05 * 0.1) < 1e-3 * M_PI * 0.005);
+        QCOMPARE(m.sign, k % 2 == 0 ? -1 : +1);
+        QVERIFY(std::abs(m.t1_s - m.t0_s - T / 2) < 0.02 * T);
+        // Half the ellipse area π a b / 2 (a = 0.05, b = 0.1), a little less where |V| < 10 % peak is cut.
+        QVERIFY(std::abs(m.signedArea) < M_PI * 0.05 * 0.1 / 2);
+        QVERIFY(std::abs(m.signedArea) > 0.95 * M_PI * 0.05 * 0.1 / 2);
     }
-    QVERIFY(w.curve("rate-state: cycle 0 cw"));
-    QVERIFY(w.curve("rate-state: cycle 2 cw"));
-    QVERIFY(!w.curve("rate-state: cycle 0 ccw"));
-    QCOMPARE(w.curve("rate-state: cycle 1 cw")->pen().color(), QColor(31, 119, 180));
+    QVERIFY(w.curve("rate-state: trajectory"));
+    QVERIFY(w.curve("rate-state: loop 0 cw"));
+    QVERIFY(w.curve("rate-state: loop 4 cw"));
+    QVERIFY(!w.curve("rate-state: loop 0 ccw"));
+    QCOMPARE(w.curve("rate-state: loop 1 cw")->pen().color(), QColor(31, 119, 180));
 }
 
 void TestWidgets::loopOrientationMarksCounterClockwise() {
     const double T = 0.5;
     FrictionLoopPlot w;
-    w.setRun(ellipseRun(false, 2, T, 100), T, LawKind::Coulomb);
+    w.setRun(ellipseRun(false, 2, T, 100), LawKind::Coulomb);
     const auto& marks = w.loopMarks(LawKind::Coulomb);
-    QCOMPARE(marks.size(), size_t(2));
+    QCOMPARE(marks.size(), size_t(3));
     for (const LoopMark& m : marks) QCOMPARE(m.orientation, +1);
-    QVERIFY(w.curve("Coulomb: cycle 1 ccw"));
-    QCOMPARE(w.curve("Coulomb: cycle 1 ccw")->pen().color(), QColor(214, 39, 40));
+    QVERIFY(w.curve("Coulomb: loop 1 ccw"));
+    QCOMPARE(w.curve("Coulomb: loop 1 ccw")->pen().color(), QColor(214, 39, 40));
+    QCOMPARE(w.curve("Coulomb: loop 1 ccw")->pen().style(), Qt::DashLine);
     QVERIFY(w.loopMarks(LawKind::RateState).empty());
 }
 
