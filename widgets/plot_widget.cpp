@@ -12,6 +12,8 @@
 #include <qwt_symbol.h>
 
 #include <QFileInfo>
+#include <algorithm>
+#include <cmath>
 #include <QVBoxLayout>
 
 #include "core/io/csv_table.hpp"
@@ -183,11 +185,35 @@ void PlotWidget::applyFonts() {
     QwtText title = plot_->title();
     title.setFont(titleFont);
     plot_->setTitle(title);
+    if (auto* legend = qobject_cast<QWidget*>(plot_->legend())) legend->setFont(base);
+}
+
+// Autoscaling a (numerically) single point gives a range of 1e-10 with unreadable labels:
+// widen such an axis to ±0.1 % of its value (a periodic Poincaré section is one dot).
+void PlotWidget::widenDegenerateAxes() {
+    QRectF box;
+    bool any = false;
+    for (auto* c : curves()) {
+        if (c->dataSize() == 0 || c->xAxis() != QwtPlot::xBottom || c->yAxis() != QwtPlot::yLeft) continue;
+        box = any ? box.united(c->boundingRect()) : c->boundingRect();
+        any = true;
+    }
+    if (!any) return;
+    auto widen = [this](int axis, double lo, double hi) {
+        const double centre = 0.5 * (lo + hi);
+        const double scale = std::max(std::abs(lo), std::abs(hi));
+        if (hi - lo > 1e-6 * scale && hi - lo > 1e-300) return;
+        const double half = scale > 0 ? 1e-3 * scale : 1.0;
+        plot_->setAxisScale(axis, centre - half, centre + half);
+    };
+    widen(QwtPlot::xBottom, box.left(), box.right());
+    widen(QwtPlot::yLeft, box.top(), box.bottom());
 }
 
 void PlotWidget::rescale() {
     applyFonts();
     for (int axis = 0; axis < QwtPlot::axisCnt; ++axis) plot_->setAxisAutoScale(axis, true);
+    widenDegenerateAxes();
     plot_->replot();
     zoomer_->setZoomBase(false);
 }

@@ -86,6 +86,7 @@ protected:
     }
     void removeCurvesWithPrefix(const QString& prefix);
     void applyFonts();
+    void widenDegenerateAxes();
 
     QwtPlot* plot_ = nullptr;
     QwtPlotZoomer* zoomer_ = nullptr;

@@ -8,7 +8,7 @@ double CoulombLaw::slipFunction(const LawState& s, double tN) const { return std
 
 double CoulombLaw::steadyStateRatio(double) const { return params.mu; }
 
-ReturnMapResult CoulombLaw::Prepared::returnMapFromTrial(const LawState& s, double trial) const {
+ReturnMapResult CoulombLaw::Prepared::returnMapFromTrial(const LawState& s, double trial, double) const {
     ReturnMapResult r;
     const double phiTrial = std::abs(trial) - muTN;
     r.state = s;

@@ -22,7 +22,7 @@ struct CoulombLaw {
     // The return map with the step's constants fixed (see RateStateLaw::Prepared).
     struct Prepared {
         double epsT, kr, muTN;
-        ReturnMapResult returnMapFromTrial(const LawState& s, double trialForce_N) const;
+        ReturnMapResult returnMapFromTrial(const LawState& s, double trialForce_N, double /*slipHint_m*/ = 0.0) const;
     };
     Prepared prepare(double returnStiffness_N_per_m, double /*dt_s*/, double normalForce_N) const {
         return {params.epsT_N_per_m, returnStiffness_N_per_m, params.mu * normalForce_N};

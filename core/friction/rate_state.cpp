@@ -54,11 +54,13 @@ RateStateLaw::Prepared RateStateLaw::prepare(double kr, double dt, double tN) co
     return q;
 }
 
-ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, double trial) const {
+ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, double trial, double slipHint) {
     ReturnMapResult res;
     const double eps = kr;
     const double a = std::abs(trial);
-    const double e0 = std::exp(st.alpha * invR);     // exp(α_n / r)
+    const double e0 = (st.alpha == cachedAlpha) ? cachedExp : std::exp(st.alpha * invR);  // exp(α_n / r)
+    cachedAlpha = st.alpha;
+    cachedExp = e0;
     const double K1n = C1 * (e0 - 1.0);
     const double phiTrial = a - muTN - tN * K1n;      // Φ_trial, Eq. 1
     res.state = st;
@@ -71,12 +73,13 @@ ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, d
     res.stuck = false;
     const double s = trial >= 0.0 ? 1.0 : -1.0;
 
-    // Residual R and R' at Δλ = x; also α(x).
+    // Residual R and R' at Δλ = x; also α(x) and exp(α(x)/r).
+    double e = e0;
     auto eval = [&](double x, double& R, double& dR, double& alpha) {
         const double invDen = 1.0 / (1.0 + x * invDc);
         alpha = (st.alpha - c2q * x * x) * invDen;
         const double dalpha = (-2.0 * c2q * x - alpha * invDc) * invDen;
-        const double e = std::exp(alpha * invR);
+        e = std::exp(alpha * invR);
         R = a - eps * x - muTN - C1TN * (e - 1.0) - visc * x;
         dR = -krPlusVisc - C1TN * invR * e * dalpha;
     };
@@ -93,6 +96,8 @@ ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, d
         if (Ra > 0.0) {
             res.state.force_N = 0.0;
             res.state.alpha = alphaA;
+            cachedAlpha = alphaA;
+            cachedExp = e;
             res.slipIncrement_m = a / eps;
             res.tangent_N_per_m = 0.0;
             return res;
@@ -105,7 +110,16 @@ ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, d
     double x = 0.0;
     int it = 0;
     bool ok = false;
-    for (; it < 200; ++it) {
+    if (slipHint > 0.0 && slipHint < hi) {
+        // Warm start (e.g. the previous step's Δλ in steady sliding): evaluate there and let the
+        // sign of R tighten the bracket before Newton continues from it.
+        x = slipHint;
+        eval(x, R, dR, alpha);
+        if (R > 0.0) lo = x; else hi = x;
+        ++it;
+        if (std::abs(R) <= ftol) ok = true;
+    }
+    for (; !ok && it < 200; ++it) {
         double xn = (dR < 0.0) ? x - R / dR : 0.5 * (lo + hi);
         if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);  // bisection safeguard
         const double step = std::abs(xn - x);
@@ -121,6 +135,8 @@ ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, d
     res.slipIncrement_m = x;
     res.state.force_N = s * (a - eps * x);
     res.state.alpha = alpha;
+    cachedAlpha = alpha;
+    cachedExp = e;
     res.tangent_N_per_m = (dR < 0.0) ? epsT * (1.0 + eps / dR) : 0.0;
     return res;
 }

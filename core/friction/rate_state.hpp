@@ -5,6 +5,8 @@
 //   α̇     = −(λ̇/D_c)(α + C2 λ̇),  C2 = 1/v_c                          (2)
 #pragma once
 
+#include <limits>
+
 #include "../params.hpp"
 #include "law_state.hpp"
 
@@ -28,9 +30,13 @@ struct RateStateLaw {
 
     // The return map with every constant of a step (k_r, Δt, t_N) computed once: the form
     // used inside time loops, where these do not change from step to step.
+    // A Prepared is per-run scratch (one per time loop, never shared between threads): it
+    // remembers exp(α/r) of the last state it produced, which a stuck step (α unchanged) reuses.
     struct Prepared {
         double epsT, kr, tN, muTN, C1, C1TN, invR, invDc, visc, c2q, krPlusVisc;
-        ReturnMapResult returnMapFromTrial(const LawState& s, double trialForce_N) const;
+        double cachedAlpha = std::numeric_limits<double>::quiet_NaN(), cachedExp = 1.0;
+        // slipHint_m: a guess of Δλ (e.g. the previous step's), used to start Newton when slipping.
+        ReturnMapResult returnMapFromTrial(const LawState& s, double trialForce_N, double slipHint_m = 0.0);
     };
     Prepared prepare(double returnStiffness_N_per_m, double dt_s, double normalForce_N) const;
 

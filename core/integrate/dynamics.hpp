@@ -134,7 +134,7 @@ private:
 // `prep` is the law prepared for the condensed return map (law.prepare), used when the law
 // has one and the coupling is Condensed.
 template <class Law, class Prepared>
-inline bool newmarkStep(const NewmarkConstants& K, const Law& law, const Prepared* prep, double u1, DynState& s,
+inline bool newmarkStep(const NewmarkConstants& K, const Law& law, Prepared* prep, double u1, DynState& s,
                         Coupling coupling, int& newtonIts, int& lawIts, const char*& why, double& badValue) {
     const double h = K.h;
     const double du = u1 - s.u;
@@ -148,7 +148,7 @@ inline bool newmarkStep(const NewmarkConstants& K, const Law& law, const Prepare
     if constexpr (HasPreparedReturnMap<Law>) {
         if (coupling == Coupling::Condensed && prep) {
             const double Ftrial = s.law.force_N + eps * (du - (x - s.x));
-            rm = prep->returnMapFromTrial(s.law, Ftrial);
+            rm = prep->returnMapFromTrial(s.law, Ftrial, s.stuck ? 0.0 : s.slipRate * h);
             lawIts += rm.iterations;
             if (!rm.converged) { why = "return mapping did not converge (slip increment)"; badValue = rm.slipIncrement_m; return false; }
             if (!rm.stuck) x += (rm.state.force_N - Ftrial) * K.invKeff;
@@ -192,7 +192,7 @@ inline bool newmarkStep(const RigParams& rig, const Law& law, const StageMotion&
                         int& newtonIts, int& lawIts, const char*& why, double& badValue) {
     const NewmarkConstants K(rig, law.epsT(), h);
     const double u1 = stage.displacement(s.t + h);
-    return newmarkStep(K, law, static_cast<const int*>(nullptr), u1, s, Coupling::Newton, newtonIts, lawIts, why,
+    return newmarkStep(K, law, static_cast<int*>(nullptr), u1, s, Coupling::Newton, newtonIts, lawIts, why,
                        badValue);
 }
 
@@ -203,7 +203,7 @@ StepReport advanceWith(const DynamicsModel& m, const Law& law, DynState& s, long
     const NewmarkConstants K(m.rig, law.epsT(), m.dt_s);
     StageSequence stage(m.stage, s.t, m.dt_s);
     const double t0 = s.t;
-    auto run = [&](const auto* prep) {
+    auto run = [&](auto* prep) {
         const long block = 4096;
         for (long i = 0; i < n; ++i) {
             if ((i % block) == 0 && i > 0 && ctl.cancelled()) {
@@ -229,10 +229,10 @@ StepReport advanceWith(const DynamicsModel& m, const Law& law, DynState& s, long
         }
     };
     if constexpr (HasPreparedReturnMap<Law>) {
-        const auto prep = law.prepare(K.returnStiffness, K.h, K.tN);
+        auto prep = law.prepare(K.returnStiffness, K.h, K.tN);
         run(&prep);
     } else {
-        run(static_cast<const int*>(nullptr));
+        run(static_cast<int*>(nullptr));
     }
     return rep;
 }
