@@ -79,10 +79,15 @@ void FrictionLoopPlot::setRun(const RunResult& run, LawKind law) {
                                                    : (m.orientation > 0 ? QStringLiteral("ccw") : QStringLiteral("flat"));
             const QColor color = m.orientation < 0 ? style::clockwise()
                                                    : (m.orientation > 0 ? style::counterClockwise() : QColor(120, 120, 120));
-            auto* c = addCurve(QStringLiteral("%1: loop %2 %3").arg(modelLabel(law)).arg(k).arg(kind), law, color);
+            // Built detached and without a legend entry, then attached: attaching a legend item and
+            // removing it again re-lays out the legend each time (seconds for ~200 excursions).
+            auto* c = new QwtPlotCurve(QStringLiteral("%1: loop %2 %3").arg(modelLabel(law)).arg(k).arg(kind));
+            c->setItemAttribute(QwtPlotItem::Legend, false);
+            c->setPen(QPen(color, 1.3, style::modelPenStyle(law)));
+            c->setRenderHint(QwtPlotItem::RenderAntialiased, true);
             c->setSamples(pts);
             c->setZ(20);
-            c->setItemAttribute(QwtPlotItem::Legend, false);
+            c->attach(plot_);
         }
     }
     updateSummary();

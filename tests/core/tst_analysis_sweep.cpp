@@ -21,7 +21,7 @@ SimParams fig20() {
 }
 SweepOptions small() {
     SweepOptions o;
-    o.key = "A";
+    o.key = std::string("A");
     o.from = 0.2e-3;
     o.to = 1.0e-3;
     o.steps = 5;
@@ -130,7 +130,7 @@ private slots:
     }
     void sweepOfAnotherKeyChangesTheDrive() {
         SweepOptions o = small();
-        o.key = "f";
+        o.key = std::string("f");
         o.from = 3.0;
         o.to = 6.0;
         o.steps = 2;
@@ -150,14 +150,14 @@ private slots:
         QVERIFY(r.status == RunStatus::Cancelled);
         QVERIFY(r.points.empty());
         SweepOptions bad = small();
-        bad.key = "nonsense";
+        bad.key = std::string("nonsense");
         bad.steps = 0;
         r = bifurcationSweep(fig20(), bad);
         QVERIFY(r.status == RunStatus::Failed);
         QVERIFY(r.message.find("nonsense") != std::string::npos);
         QVERIFY(r.message.find("steps") != std::string::npos);
         SweepOptions neg = small();
-        neg.key = "tN";
+        neg.key = std::string("tN");
         neg.from = -1;
         r = bifurcationSweep(fig20(), neg);
         QVERIFY(r.status == RunStatus::Failed);
@@ -169,7 +169,7 @@ private slots:
         o.from1 = 0.2e-3;
         o.to1 = 1.0e-3;
         o.steps1 = 3;
-        o.key2 = "tN";
+        o.key2 = std::string("tN");
         o.from2 = 4.0;
         o.to2 = 8.0;
         o.steps2 = 2;
@@ -195,7 +195,7 @@ private slots:
         QVERIFY(a.period == b.period);
         QVERIFY(a.stickFraction == b.stickFraction);
         QVERIFY(a.maxRelVel_mps == b.maxRelVel_mps);
-        o.key2 = "A";
+        o.key2 = std::string("A");
         const PeriodicityMap bad = periodicityMap(fig20(), o);
         QVERIFY(bad.status == RunStatus::Failed);
     }
