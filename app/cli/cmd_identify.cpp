@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "measured_data.hpp"
 #include "core/identify/fit.hpp"
 #include "core/identify/identify.hpp"
 #include "core/identify/preprocess.hpp"
@@ -42,33 +43,9 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
         std::cerr << "stickslip-cli identify: " << msg << "\n";
         exitCode = code;
     };
-    io::DatasetOptions dopt;
-    dopt.manifestPath = o.manifest;
-    dopt.runSets = o.runSets;
-    std::string why;
-    for (const auto& c : o.columns)
-        if (!dopt.mapping.addColumns(c, &why)) return fail(why, kBadArguments);
-    for (const auto& u : o.units)
-        if (!dopt.mapping.addUnits(u, &why)) return fail(why, kBadArguments);
     io::Dataset fitData, valData;
-    io::DatasetError derr;
-    if (!io::loadDataset(o.data, dopt, fitData, derr))
-        return fail(derr.what(), derr.file == "--run-set" ? kBadArguments : kBadInput);
-    if (!o.validateOn.empty()) {
-        io::DatasetOptions vopt = dopt;
-        vopt.runSets.clear();
-        if (!io::loadDataset(o.validateOn, vopt, valData, derr)) return fail(derr.what(), kBadInput);
-        for (const std::string& spec : o.runSets) {
-            std::string w;
-            io::applyRunSet(valData, spec, &w);
-        }
-    }
     SetupKind setup = SetupKind::Prescribed;
-    if (!o.setup.empty()) {
-        if (!parseSetupKind(o.setup, setup)) return fail("--setup " + o.setup + ": must be prescribed or dynamics", kBadArguments);
-    } else if (fitData.runs.front().has(Signal::SliderDisp)) {
-        setup = SetupKind::Dynamics;
-    }
+    if (!loadMeasuredData("identify", o, fitData, valData, setup, exitCode)) return;
     PreprocessSettings pre = o.pre;
     if (o.noBandStop) pre.filters.bandStop = false;
     if (o.noLowPass) pre.filters.lowPass = false;
