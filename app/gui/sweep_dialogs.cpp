@@ -49,6 +49,39 @@ double scaleOf(const QComboBox* key) { return paramScale(key->currentData().toSt
 
 QString seconds(double ms) { return QStringLiteral("%1 s").arg(ms / 1000.0, 0, 'f', 2); }
 
+// The part every long-running dialog shares below its form: progress bar, status line and
+// Run / Cancel / Close (Close hides the dialog; Cancel starts disabled).
+struct RunControls {
+    QProgressBar* progress;
+    QLabel* status;
+    QPushButton* run;
+    QPushButton* cancel;
+};
+
+RunControls addRunControls(QDialog* dialog, QFormLayout* form, const QString& statusText, const QString& cancelText) {
+    RunControls c;
+    c.progress = new QProgressBar(dialog);
+    c.progress->setRange(0, 1000);
+    c.status = new QLabel(statusText, dialog);
+    c.status->setWordWrap(true);
+    c.run = new QPushButton(QObject::tr("Run"), dialog);
+    c.cancel = new QPushButton(cancelText, dialog);
+    c.cancel->setEnabled(false);
+    auto* close = new QPushButton(QObject::tr("Close"), dialog);
+    auto* buttons = new QHBoxLayout;
+    buttons->addStretch(1);
+    buttons->addWidget(c.run);
+    buttons->addWidget(c.cancel);
+    buttons->addWidget(close);
+    auto* top = new QVBoxLayout(dialog);
+    top->addLayout(form);
+    top->addWidget(c.progress);
+    top->addWidget(c.status);
+    top->addLayout(buttons);
+    QObject::connect(close, &QPushButton::clicked, dialog, &QDialog::hide);
+    return c;
+}
+
 }  // namespace
 
 SweepDialog::SweepDialog(SimulationController* controller, SettingsSource current, QWidget* parent)
@@ -74,29 +107,16 @@ SweepDialog::SweepDialog(SimulationController* controller, SettingsSource curren
     form->addRow(tr("Direction"), direction_);
     form->addRow(tr("Settle cycles per value"), settle_);
     form->addRow(tr("Sampled cycles per value"), sample_);
-    progress_ = new QProgressBar(this);
-    progress_->setRange(0, 1000);
+    const RunControls rc = addRunControls(this, form, tr("The state is carried from one value to the next (continuation)."),
+                                          tr("Cancel sweep"));
+    progress_ = rc.progress;
     progress_->setValue(0);
-    status_ = new QLabel(tr("The state is carried from one value to the next (continuation)."), this);
-    status_->setWordWrap(true);
-    runButton_ = new QPushButton(tr("Run"), this);
-    cancelButton_ = new QPushButton(tr("Cancel sweep"), this);
-    cancelButton_->setEnabled(false);
-    auto* close = new QPushButton(tr("Close"), this);
-    auto* buttons = new QHBoxLayout;
-    buttons->addStretch(1);
-    buttons->addWidget(runButton_);
-    buttons->addWidget(cancelButton_);
-    buttons->addWidget(close);
-    auto* top = new QVBoxLayout(this);
-    top->addLayout(form);
-    top->addWidget(progress_);
-    top->addWidget(status_);
-    top->addLayout(buttons);
+    status_ = rc.status;
+    runButton_ = rc.run;
+    cancelButton_ = rc.cancel;
 
     connect(runButton_, &QPushButton::clicked, this, &SweepDialog::start);
     connect(cancelButton_, &QPushButton::clicked, this, &SweepDialog::cancelSweep);
-    connect(close, &QPushButton::clicked, this, &QDialog::hide);
     connect(controller_, &SimulationController::sweepProgress, this,
             [this](double f) { progress_->setValue(static_cast<int>(f * 1000.0)); });
     connect(controller_, &SimulationController::sweepFinished, this, &SweepDialog::onFinished);
@@ -191,27 +211,14 @@ MapDialog::MapDialog(SimulationController* controller, SettingsSource current, Q
     form->addRow(tr("y values"), steps2_);
     form->addRow(tr("Settle cycles per cell"), settle_);
     form->addRow(tr("Sampled cycles per cell"), sample_);
-    progress_ = new QProgressBar(this);
-    progress_->setRange(0, 1000);
-    status_ = new QLabel(tr("Every cell starts from rest; cells run in parallel."), this);
-    status_->setWordWrap(true);
-    runButton_ = new QPushButton(tr("Run"), this);
-    cancelButton_ = new QPushButton(tr("Cancel map"), this);
-    cancelButton_->setEnabled(false);
-    auto* close = new QPushButton(tr("Close"), this);
-    auto* buttons = new QHBoxLayout;
-    buttons->addStretch(1);
-    buttons->addWidget(runButton_);
-    buttons->addWidget(cancelButton_);
-    buttons->addWidget(close);
-    auto* top = new QVBoxLayout(this);
-    top->addLayout(form);
-    top->addWidget(progress_);
-    top->addWidget(status_);
-    top->addLayout(buttons);
+    const RunControls rc =
+        addRunControls(this, form, tr("Every cell starts from rest; cells run in parallel."), tr("Cancel map"));
+    progress_ = rc.progress;
+    status_ = rc.status;
+    runButton_ = rc.run;
+    cancelButton_ = rc.cancel;
     connect(runButton_, &QPushButton::clicked, this, &MapDialog::start);
     connect(cancelButton_, &QPushButton::clicked, this, &MapDialog::cancelMap);
-    connect(close, &QPushButton::clicked, this, &QDialog::hide);
     connect(controller_, &SimulationController::mapProgress, this,
             [this](double f) { progress_->setValue(static_cast<int>(f * 1000.0)); });
     connect(controller_, &SimulationController::mapFinished, this, &MapDialog::onFinished);
