@@ -1,5 +1,7 @@
 // Wall time of the identify loop (issue 6): all 12 real damper runs (prescribed slip) and one
 // synthetic dataset (D05, dynamics set-up). Target ≤ 120 s each. Prints what it found.
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -12,12 +14,19 @@
 using namespace stickslip;
 using namespace stickslip::identify;
 
+static double cpuSeconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 static int runCase(const char* title, const std::vector<std::string>& files, const std::string& manifest, SetupKind setup) {
     io::DatasetOptions dopt;
     dopt.manifestPath = manifest;
     io::Dataset ds;
     io::DatasetError err;
     const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = cpuSeconds();
     if (!io::loadDataset(files, dopt, ds, err)) { std::fprintf(stderr, "%s\n", err.what().c_str()); return 1; }
     std::vector<IdentifyRun> runs;
     PreprocessSettings pre;
@@ -32,8 +41,10 @@ static int runCase(const char* title, const std::vector<std::string>& files, con
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::string added;
     for (const auto& e : res.effectsAdded) added += e.name + " ";
-    std::printf("%-28s wall %7.1f s (loop %7.1f s, %ld fits)  added: %s  held-out NRMSE %.4f -> %.4f  unexplained %s%s\n", title,
-                wall, res.wallTime_s, res.fits, added.empty() ? "none " : added.c_str(), res.before.validationNrmse,
+    const double cpu = cpuSeconds() - c0;
+    std::printf("%-28s wall %7.1f s, CPU %7.1f s (loop %7.1f s wall, %ld fits, residual %s)  added: %s  held-out NRMSE %.4f -> %.4f  "
+                "unexplained %s%s\n",
+                title, wall, cpu, res.wallTime_s, res.fits, res.residual.c_str(), added.empty() ? "none " : added.c_str(), res.before.validationNrmse,
                 res.after.validationNrmse, res.unexplained ? "yes" : "no", res.ok ? "" : (" FAILED: " + res.message).c_str());
     return res.ok ? 0 : 1;
 }

@@ -1,18 +1,30 @@
 // Sweep benchmarks (issue 3), a plain executable printing figures:
 //  1. the Fig. 20 continuation sweep: A from 0.1 to 5 mm, 300 values, 50 settle + 100 sampled
-//     cycles each, up then down (state carried over): wall time, and what it found
-//     (last stick amplitude, irregular windows per branch);
+//     cycles each, both directions: wall and CPU time, threads used, and what it found (last
+//     stick amplitude, irregular windows per branch, where the branches differ: hysteresis).
+//     By default the two branches run concurrently (SweepOptions::concurrentBranches: the down
+//     branch starts from rest at the top value after a lead-in there, instead of from the end of
+//     the up branch); --sequential runs the paper's way (down continues from the up branch's end,
+//     one thread); --compare runs both and counts the down-branch values whose class differs;
+//     --lyapunov also computes the largest Lyapunov exponent per value (as the CLI does by
+//     default): sequentially its companion trajectory runs on the second thread.
 //  2. a 40 000-point Poincaré section of the Fig. 22 set (A = 0.40 mm): wall time and peak
 //     memory (getrusage ru_maxrss).
-// Usage: bench_sweep [--steps-per-period N (10000)] [--values N (300)] [--section-points N (40000)]
+// Usage: bench_sweep [--steps-per-period N (8000)] [--values N (300)] [--threads N (0 = all)]
+//                    [--sequential | --compare] [--lyapunov] [--section-points N (40000)]
 //                    [--skip-sweep] [--skip-section]
+// (8000 steps per period: the step bench_core finds for 1e-3 error/amplitude.)
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
+
+#include "core/analysis/parallel.hpp"
 
 #include "core/analysis/poincare.hpp"
 #include "core/analysis/stick_threshold.hpp"
@@ -50,7 +62,7 @@ void printWindows(const SweepResult& r, int direction) {
     for (const auto& pt : r.points) {
         if (pt.direction != direction) continue;
         const MotionClass c = pt.classification.motion;
-        if (c == MotionClass::Stick) { ++stick; if (direction > 0 && lastStick < pt.value) lastStick = pt.value; }
+        if (c == MotionClass::Stick) { ++stick; lastStick = std::max(lastStick, pt.value); }
         if (c == MotionClass::Periodic) { ++periodic; maxPeriod = std::max(maxPeriod, pt.classification.period); }
         if (c == MotionClass::Irregular) {
             ++irregular;
@@ -68,54 +80,140 @@ void printWindows(const SweepResult& r, int direction) {
         std::snprintf(buf, sizeof buf, " [%.4f, %.4f]", std::min(start, prev) * 1e3, std::max(start, prev) * 1e3);
         windows += buf;
     }
-    std::printf("  %s branch: %d stick, %d periodic (max period %d), %d irregular\n", direction > 0 ? "up" : "down",
-                stick, periodic, maxPeriod, irregular);
-    if (direction > 0) std::printf("  last stick amplitude (up): %.4f mm\n", lastStick * 1e3);
-    std::printf("  irregular windows [mm]:%s\n", windows.empty() ? " none" : windows.c_str());
+    std::printf("  %s branch: %d stick, %d periodic (max period %d), %d irregular; highest stick amplitude %.4f mm\n",
+                direction > 0 ? "up" : "down", stick, periodic, maxPeriod, irregular, lastStick * 1e3);
+    std::printf("    irregular windows [mm]:%s\n", windows.empty() ? " none" : windows.c_str());
+}
+
+// Hysteresis: values where the up and down branches of one sweep end in different classes.
+void printHysteresis(const SweepResult& r) {
+    std::vector<const SweepPoint*> up, down;
+    for (const auto& pt : r.points) (pt.direction > 0 ? up : down).push_back(&pt);
+    std::reverse(down.begin(), down.end());
+    int differ = 0;
+    std::string where;
+    for (std::size_t i = 0; i < std::min(up.size(), down.size()); ++i) {
+        const Classification &a = up[i]->classification, &b = down[i]->classification;
+        if (a.motion == b.motion && a.period == b.period) continue;
+        if (++differ <= 8) {
+            char buf[96];
+            std::snprintf(buf, sizeof buf, " %.4f (%s%d/%s%d)", up[i]->value * 1e3, toString(a.motion), a.period,
+                          toString(b.motion), b.period);
+            where += buf;
+        }
+    }
+    std::printf("  up vs down (hysteresis): %d of %zu values differ in class/period%s%s\n", differ, up.size(),
+                differ ? ", first [mm] (up/down):" : "", where.c_str());
+}
+
+// Down-branch values whose class differs between two sweeps (sequential vs concurrent).
+void compareDownBranches(const SweepResult& a, const SweepResult& b) {
+    int n = 0, differ = 0;
+    std::string where;
+    for (const auto& p : a.points) {
+        if (p.direction > 0) continue;
+        for (const auto& q : b.points) {
+            if (q.direction > 0 || q.value != p.value) continue;
+            ++n;
+            const Classification &x = p.classification, &y = q.classification;
+            if (x.motion != y.motion || x.period != y.period) {
+                if (++differ <= 8) {
+                    char buf[96];
+                    std::snprintf(buf, sizeof buf, " %.4f (%s%d/%s%d)", p.value * 1e3, toString(x.motion), x.period,
+                                  toString(y.motion), y.period);
+                    where += buf;
+                }
+            }
+        }
+    }
+    std::printf("Down branch, sequential vs concurrent: %d of %d values differ in class/period%s%s\n", differ, n,
+                differ ? ", first [mm] (seq/conc):" : "", where.c_str());
+}
+
+double load1() {
+    double l[1] = {0};
+    return getloadavg(l, 1) == 1 ? l[0] : -1.0;
+}
+
+SweepResult runFig20Sweep(int values, long n, int threads, bool concurrent, bool lyapunov) {
+    Preset pr;
+    findPreset("fig20", pr);
+    SweepOptions o;
+    o.key = "A";
+    o.from = 0.1e-3;
+    o.to = 5e-3;
+    o.steps = values;
+    o.direction = SweepDirection::Both;
+    o.mode = SweepMode::Continuation;
+    o.settleCycles = 50;
+    o.sampleCycles = 100;
+    o.stepsPerPeriod = n;
+    o.threads = threads;
+    o.concurrentBranches = concurrent;
+    o.lyapunov = lyapunov;
+    const int used = concurrent || lyapunov ? workerCount(threads, 2) : 1;
+    const double loadBefore = load1();
+    const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = cpuSeconds();
+    SweepResult r = bifurcationSweep(pr.params, o);
+    const double wall = seconds(t0), cpu = cpuSeconds() - c0;
+    // Steps: 150 cycles per value and branch, plus the concurrent down branch's lead-in.
+    // With the Lyapunov exponent the companion trajectory adds the 100 sampled cycles again.
+    const double cycles = 2.0 * values * (lyapunov ? 250.0 : 150.0) + (concurrent ? 150.0 : 0.0);
+    const double steps = cycles * static_cast<double>(n);
+    std::printf("Fig. 20 continuation sweep (fig20 preset, eps_T = 1.1e4 N/m): A 0.1-5 mm, %d values, "
+                "50 settle + 100 sampled cycles, up and down, T/%ld\n",
+                values, n);
+    std::printf("  Lyapunov exponent: %s\n", lyapunov ? (concurrent ? "yes, companion on the branch's thread"
+                                                                   : "yes, companion on a second thread")
+                                                        : "no");
+    std::printf("  branches: %s\n", concurrent ? "concurrent (down branch from rest at 5 mm after a 150-cycle lead-in)"
+                                               : "sequential (down branch continues from the end of the up branch)");
+    std::printf("  status %s%s\n", toString(r.status), r.message.empty() ? "" : (" (" + r.message + ")").c_str());
+    std::printf("  wall time %.2f s, CPU time %.2f s, threads used %d, %.3g steps, %.1f ns (CPU) per step, "
+                "%.0f cycles per wall second\n",
+                wall, cpu, used, steps, cpu / steps * 1e9, cycles / wall);
+    std::printf("  load average (1 min) before %.2f, after %.2f\n", loadBefore, load1());
+    printWindows(r, +1);
+    printWindows(r, -1);
+    printHysteresis(r);
+    std::fflush(stdout);
+    return r;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    long n = 10000, sectionPoints = 40000;
-    int values = 300;
-    bool sweep = true, section = true;
+    long n = 8000, sectionPoints = 40000;
+    int values = 300, threads = 0;
+    bool sweep = true, section = true, sequential = false, compare = false, lyapunov = false;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--steps-per-period") && i + 1 < argc) n = std::atol(argv[++i]);
         else if (!std::strcmp(argv[i], "--values") && i + 1 < argc) values = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--section-points") && i + 1 < argc) sectionPoints = std::atol(argv[++i]);
+        else if (!std::strcmp(argv[i], "--sequential")) sequential = true;
+        else if (!std::strcmp(argv[i], "--compare")) compare = true;
+        else if (!std::strcmp(argv[i], "--lyapunov")) lyapunov = true;
         else if (!std::strcmp(argv[i], "--skip-sweep")) sweep = false;
         else if (!std::strcmp(argv[i], "--skip-section")) section = false;
         else { std::fprintf(stderr, "unknown argument %s\n", argv[i]); return 2; }
     }
+    if (n < 1 || values < 1 || threads < 0 || sectionPoints < 1) {
+        std::fprintf(stderr, "--steps-per-period, --values and --section-points must be >= 1, --threads >= 0\n");
+        return 2;
+    }
     if (sweep) {
         Preset pr;
         findPreset("fig20", pr);
-        SweepOptions o;
-        o.key = "A";
-        o.from = 0.1e-3;
-        o.to = 5e-3;
-        o.steps = values;
-        o.direction = SweepDirection::Both;
-        o.mode = SweepMode::Continuation;
-        o.settleCycles = 50;
-        o.sampleCycles = 100;
-        o.stepsPerPeriod = n;
-        const auto t0 = std::chrono::steady_clock::now();
-        const double c0 = cpuSeconds();
-        const SweepResult r = bifurcationSweep(pr.params, o);
-        const double wall = seconds(t0), cpu = cpuSeconds() - c0;
-        const double steps = 2.0 * values * 150.0 * static_cast<double>(n);
-        std::printf("Fig. 20 continuation sweep (fig20 preset, eps_T = 1.1e4 N/m): A 0.1-5 mm, %d values, "
-                    "50 settle + 100 sampled cycles, up and down, T/%ld\n",
-                    values, n);
-        std::printf("  status %s%s\n", toString(r.status), r.message.empty() ? "" : (" (" + r.message + ")").c_str());
-        std::printf("  wall time %.2f s, CPU time %.2f s, %.3g steps, %.1f ns (CPU) per step\n", wall, cpu, steps,
-                    cpu / steps * 1e9);
-        std::printf("  closed-form stick threshold A_s = %.4f mm\n", stickThresholdAmplitude(pr.params) * 1e3);
-        printWindows(r, +1);
-        printWindows(r, -1);
-        std::fflush(stdout);
+        std::printf("closed-form stick threshold A_s = %.4f mm\n", stickThresholdAmplitude(pr.params) * 1e3);
+        if (compare) {
+            const SweepResult seq = runFig20Sweep(values, n, threads, false, lyapunov);
+            const SweepResult conc = runFig20Sweep(values, n, threads, true, lyapunov);
+            compareDownBranches(seq, conc);
+        } else {
+            runFig20Sweep(values, n, threads, !sequential, lyapunov);
+        }
     }
     if (section) {
         Preset pr;

@@ -4,6 +4,9 @@
 #include <qwt_plot_curve.h>
 #include <qwt_plot_marker.h>
 
+#include <algorithm>
+
+#include "decimated_curve.hpp"
 #include "plot_style.hpp"
 
 namespace stickslip::widgets {
@@ -21,12 +24,13 @@ AutocorrelationPlot::AutocorrelationPlot(QWidget* parent) : PlotWidget(parent) {
 
 void AutocorrelationPlot::setAutocorrelation(const std::vector<double>& lag_s, const std::vector<double>& r,
                                              LawKind law) {
-    removeCurvesWithPrefix(modelLabel(law) + QLatin1Char(':'));
     QVector<QPointF> pts;
     const size_t n = std::min(lag_s.size(), r.size());
     pts.reserve(static_cast<int>(n));
     for (size_t i = 0; i < n; ++i) pts.append(QPointF(lag_s[i], r[i]));
-    auto* c = addCurve(modelLabel(law) + QStringLiteral(": autocorrelation"), law, style::modelColor(law));
+    auto* c = static_cast<DecimatedCurve*>(
+        reuseCurve(modelLabel(law) + QStringLiteral(": autocorrelation"), law, style::modelColor(law)));
+    c->setMonotonicX(std::is_sorted(lag_s.begin(), lag_s.begin() + static_cast<std::ptrdiff_t>(n)));
     c->setSamples(pts);
     rescale();
 }

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "core/analysis/loop_orientation.hpp"
+#include "decimated_curve.hpp"
 #include "plot_style.hpp"
 
 namespace stickslip::widgets {
@@ -25,7 +26,16 @@ FrictionLoopPlot::FrictionLoopPlot(QWidget* parent) : PlotWidget(parent) {
 
 void FrictionLoopPlot::setRun(const RunResult& run, LawKind law) {
     const int slot = style::slot(law);
-    removeCurvesWithPrefix(modelLabel(law) + QLatin1Char(':'));
+    const QString trajectoryTitle = modelLabel(law) + QStringLiteral(": trajectory");
+    // The trajectory curve (the only one with a legend entry) is kept and refilled: removing
+    // and attaching it re-lays out the legend.
+    QwtPlotCurve* bg = curve(trajectoryTitle);
+    const QString prefix = modelLabel(law) + QLatin1Char(':');
+    for (QwtPlotCurve* c : curves()) {
+        if (c == bg || !c->title().text().startsWith(prefix)) continue;
+        c->detach();
+        delete c;
+    }
     marks_[slot].clear();
     const auto& samples = run.samples;
     if (!samples.empty()) {
@@ -41,8 +51,7 @@ void FrictionLoopPlot::setRun(const RunResult& run, LawKind law) {
             rho.push_back(s.ratio);
             all.append(QPointF(s.relVel_mps, s.ratio));
         }
-        auto* bg = addCurve(modelLabel(law) + QStringLiteral(": trajectory"),
-                            QPen(QColor(190, 190, 190), 0.8, style::modelPenStyle(law)));
+        if (!bg) bg = addCurve(trajectoryTitle, QPen(QColor(190, 190, 190), 0.8, style::modelPenStyle(law)));
         bg->setSamples(all);
         bg->setZ(10);
 
@@ -81,14 +90,17 @@ void FrictionLoopPlot::setRun(const RunResult& run, LawKind law) {
                                                    : (m.orientation > 0 ? style::counterClockwise() : QColor(120, 120, 120));
             // Built detached and without a legend entry, then attached: attaching a legend item and
             // removing it again re-lays out the legend each time (seconds for ~200 excursions).
-            auto* c = new QwtPlotCurve(QStringLiteral("%1: loop %2 %3").arg(modelLabel(law)).arg(k).arg(kind));
+            auto* c = new DecimatedCurve(QStringLiteral("%1: loop %2 %3").arg(modelLabel(law)).arg(k).arg(kind));
             c->setItemAttribute(QwtPlotItem::Legend, false);
-            c->setPen(QPen(color, 1.3, style::modelPenStyle(law)));
+            c->setPen(QPen(color, style::kModelLineWidth, style::modelPenStyle(law)));
             c->setRenderHint(QwtPlotItem::RenderAntialiased, true);
             c->setSamples(pts);
             c->setZ(20);
             c->attach(plot_);
         }
+    } else if (bg) {
+        bg->detach();
+        delete bg;
     }
     updateSummary();
     rescale();

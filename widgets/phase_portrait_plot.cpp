@@ -14,12 +14,11 @@ PhasePortraitPlot::PhasePortraitPlot(QWidget* parent) : PlotWidget(parent) {
 }
 
 void PhasePortraitPlot::setRun(const RunResult& run, LawKind law) {
-    removeCurvesWithPrefix(modelLabel(law) + QLatin1Char(':'));
     QVector<QPointF> pts;
     pts.reserve(static_cast<int>(run.samples.size()));
     for (const Sample& s : run.samples) pts.append(QPointF(s.slider_m * xFactor_, s.relVel_mps * yFactor_));
-    auto* c = addCurve(modelLabel(law) + QStringLiteral(": trajectory"), law, style::modelColor(law));
-    c->setPen(QPen(style::modelColor(law), 0.8, style::modelPenStyle(law)));
+    auto* c = reuseCurve(modelLabel(law) + QStringLiteral(": trajectory"),
+                         QPen(style::modelColor(law), 0.8, style::modelPenStyle(law)));
     c->setSamples(pts);
     rescale();
 }

@@ -19,6 +19,11 @@ inline QColor modelColor(LawKind law) { return law == LawKind::Coulomb ? coulomb
 inline Qt::PenStyle modelPenStyle(LawKind law) { return law == LawKind::Coulomb ? Qt::DashLine : Qt::SolidLine; }
 inline int slot(LawKind law) { return law == LawKind::Coulomb ? 1 : 0; }
 
+// Width of model curves [px]. Qt strokes antialiased pens of at most 1 px with its fast
+// cosmetic stroker; wider pens go through QStroker and a polygon fill, ~20x slower for
+// thousands of points (1.3 px cost the Fig. 20 loop view ~15 ms per result; bench_gui_latency).
+inline constexpr double kModelLineWidth = 1.0;
+
 // Channel colours for the time series (stage, slider, F/t_N, V, α).
 inline QColor channelColor(int index) {
     static const QColor c[] = {QColor(127, 127, 127), QColor(31, 119, 180), QColor(214, 39, 40),

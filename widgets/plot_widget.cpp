@@ -17,6 +17,7 @@
 #include <QVBoxLayout>
 
 #include "core/io/csv_table.hpp"
+#include "decimated_curve.hpp"
 #include "plot_export.hpp"
 #include "plot_style.hpp"
 
@@ -97,7 +98,7 @@ void PlotWidget::setAxisTitles(const QString& xTitle, const QString& yTitle) {
 }
 
 QwtPlotCurve* PlotWidget::addCurve(const QString& title, const QPen& pen, int yAxis) {
-    auto* c = new QwtPlotCurve(title);
+    auto* c = new DecimatedCurve(title);
     c->setPen(pen);
     c->setRenderHint(QwtPlotItem::RenderAntialiased, true);
     c->setPaintAttribute(QwtPlotCurve::FilterPoints, true);
@@ -107,7 +108,19 @@ QwtPlotCurve* PlotWidget::addCurve(const QString& title, const QPen& pen, int yA
 }
 
 QwtPlotCurve* PlotWidget::addCurve(const QString& title, LawKind law, const QColor& color, int yAxis) {
-    return addCurve(title, QPen(color, 1.3, style::modelPenStyle(law)), yAxis);
+    return addCurve(title, QPen(color, style::kModelLineWidth, style::modelPenStyle(law)), yAxis);
+}
+
+QwtPlotCurve* PlotWidget::reuseCurve(const QString& title, const QPen& pen, int yAxis) {
+    QwtPlotCurve* c = curve(title);
+    if (!c) return addCurve(title, pen, yAxis);
+    c->setPen(pen);
+    c->setYAxis(yAxis);
+    return c;
+}
+
+QwtPlotCurve* PlotWidget::reuseCurve(const QString& title, LawKind law, const QColor& color, int yAxis) {
+    return reuseCurve(title, QPen(color, style::kModelLineWidth, style::modelPenStyle(law)), yAxis);
 }
 
 void PlotWidget::addMeasured(const MeasuredSeries& series) {
@@ -162,7 +175,29 @@ QwtPlotCurve* PlotWidget::curve(const QString& title) const {
     return nullptr;
 }
 
-bool PlotWidget::exportTo(const QString& path, QString* error) const {
+void PlotWidget::updateWhenVisible(std::function<void()> update) {
+    if (isVisible()) {
+        pending_ = nullptr;
+        update();
+    } else {
+        pending_ = std::move(update);
+    }
+}
+
+void PlotWidget::applyPendingUpdate() {
+    if (!pending_) return;
+    const std::function<void()> update = std::move(pending_);
+    pending_ = nullptr;
+    update();
+}
+
+void PlotWidget::showEvent(QShowEvent* e) {
+    QWidget::showEvent(e);
+    applyPendingUpdate();
+}
+
+bool PlotWidget::exportTo(const QString& path, QString* error) {
+    applyPendingUpdate();
     if (QFileInfo(path).suffix().compare(QLatin1String("csv"), Qt::CaseInsensitive) == 0) {
         return exportCsv(plot_, path, error);
     }

@@ -9,6 +9,7 @@
 #include <QString>
 #include <QVector>
 #include <QWidget>
+#include <functional>
 #include <vector>
 
 #include "core/params.hpp"
@@ -65,7 +66,15 @@ public:
     QwtPlotCurve* curve(const QString& title) const;
 
     // Export by extension: .png .svg .pdf (the plot) or .csv (its data); atomic write.
-    bool exportTo(const QString& path, QString* error = nullptr) const;
+    // A pending update (below) is applied first, so the file shows the newest data.
+    bool exportTo(const QString& path, QString* error = nullptr);
+
+    // Hidden views need not redraw on every result: runs `update` now when the widget is
+    // visible, else keeps it (a newer one replaces an older one) and runs it when the widget
+    // is shown, exported or applyPendingUpdate() is called.
+    void updateWhenVisible(std::function<void()> update);
+    bool hasPendingUpdate() const { return static_cast<bool>(pending_); }
+    void applyPendingUpdate();
 
     // Display scale of the primary axes: value shown = SI value * factor (e.g. 1e3 for mm).
     double xFactor() const { return xFactor_; }
@@ -76,9 +85,15 @@ public slots:
     void rescale();
 
 protected:
+    void showEvent(QShowEvent* e) override;
     // A curve of `law` (pen style by model) in `color`, attached on axis `yAxis`.
     QwtPlotCurve* addCurve(const QString& title, LawKind law, const QColor& color, int yAxis = 2 /*yLeft*/);
     QwtPlotCurve* addCurve(const QString& title, const QPen& pen, int yAxis = 2 /*yLeft*/);
+    // The curve titled `title`, refilled by the caller: an existing one gets `pen` and
+    // `yAxis`, else one is added. Results reuse their curves because attaching or removing a
+    // curve re-lays out the legend (milliseconds per result).
+    QwtPlotCurve* reuseCurve(const QString& title, const QPen& pen, int yAxis = 2 /*yLeft*/);
+    QwtPlotCurve* reuseCurve(const QString& title, LawKind law, const QColor& color, int yAxis = 2 /*yLeft*/);
     void setAxisTitles(const QString& xTitle, const QString& yTitle);
     void setFactors(double xFactor, double yFactor) {
         xFactor_ = xFactor;
@@ -95,6 +110,9 @@ protected:
     QwtPlotGrid* grid_ = nullptr;
     double xFactor_ = 1.0;
     double yFactor_ = 1.0;
+
+private:
+    std::function<void()> pending_;
 };
 
 }  // namespace stickslip::widgets

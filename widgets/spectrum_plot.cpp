@@ -20,12 +20,12 @@ SpectrumPlot::SpectrumPlot(QWidget* parent) : PlotWidget(parent) {
 }
 
 void SpectrumPlot::setValueTitle(const QString& title) {
+    if (plot_->axisTitle(QwtPlot::yLeft).text() == title) return;
     plot_->setAxisTitle(QwtPlot::yLeft, title);
     plot_->replot();
 }
 
 void SpectrumPlot::setSpectrum(const std::vector<double>& freq_Hz, const std::vector<double>& psd, LawKind law) {
-    removeCurvesWithPrefix(modelLabel(law) + QLatin1Char(':'));
     const size_t n = std::min(freq_Hz.size(), psd.size());
     // A log axis cannot show zeros: clamp to the smallest positive value (or 1e-300).
     double floor = std::numeric_limits<double>::infinity();
@@ -35,7 +35,7 @@ void SpectrumPlot::setSpectrum(const std::vector<double>& freq_Hz, const std::ve
     QVector<QPointF> pts;
     pts.reserve(static_cast<int>(n));
     for (size_t i = 0; i < n; ++i) pts.append(QPointF(freq_Hz[i], std::max(psd[i], floor)));
-    auto* c = addCurve(modelLabel(law) + QStringLiteral(": PSD"), law, style::modelColor(law));
+    auto* c = reuseCurve(modelLabel(law) + QStringLiteral(": PSD"), law, style::modelColor(law));
     c->setSamples(pts);
     rescale();
 }

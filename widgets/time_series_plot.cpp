@@ -5,9 +5,12 @@
 #include <qwt_plot_marker.h>
 #include <qwt_plot_picker.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
+#include "decimated_curve.hpp"
 #include "plot_style.hpp"
 
 namespace stickslip::widgets {
@@ -112,6 +115,8 @@ void TimeSeriesPlot::clearAll() {
 }
 
 void TimeSeriesPlot::setCursorTime(double t_s) {
+    // A new run restarts the rig at the same time: nothing to redraw then.
+    if (t_s == cursorTime_s_ || (std::isnan(t_s) && std::isnan(cursorTime_s_))) return;
     cursorTime_s_ = t_s;
     cursor_->setVisible(std::isfinite(t_s));
     if (std::isfinite(t_s)) cursor_->setXValue(t_s);
@@ -119,7 +124,23 @@ void TimeSeriesPlot::setCursorTime(double t_s) {
 }
 
 void TimeSeriesPlot::rebuild() {
-    plot_->detachItems(QwtPlotItem::Rtti_PlotCurve, true);
+    // The curves already attached are reused by title (setSamples only): detaching and
+    // attaching curves re-lays out the legend on every result.
+    std::vector<QwtPlotCurve*> old;
+    for (auto* c : curves()) old.push_back(c);
+    auto curveFor = [&](const QString& title, const QPen& pen, int yAxis) {
+        auto it = std::find_if(old.begin(), old.end(), [&](QwtPlotCurve* c) { return c->title().text() == title; });
+        QwtPlotCurve* c = nullptr;
+        if (it != old.end()) {
+            c = *it;
+            old.erase(it);
+            c->setPen(pen);
+            c->setYAxis(yAxis);
+        } else {
+            c = addCurve(title, pen, yAxis);
+        }
+        return static_cast<DecimatedCurve*>(c);
+    };
     QStringList leftTitles, rightTitles;
     bool anyRight = false;
     for (Channel c : kChannels) {
@@ -153,20 +174,28 @@ void TimeSeriesPlot::rebuild() {
                 if (ranged && (s.t_s < tBegin - 1e-12 || s.t_s >= tEnd - 1e-12)) continue;
                 pts.append(QPointF(s.t_s, value(s, c) * factor(c)));
             }
-            auto* curve = addCurve(modelLabel(law) + QStringLiteral(": ") + channelName(c), law,
-                                   style::channelColor(channelIndex(c)), onLeftAxis(c) ? QwtPlot::yLeft : rightAxis);
+            DecimatedCurve* curve = curveFor(modelLabel(law) + QStringLiteral(": ") + channelName(c),
+                                             QPen(style::channelColor(channelIndex(c)), style::kModelLineWidth, style::modelPenStyle(law)),
+                                             onLeftAxis(c) ? QwtPlot::yLeft : rightAxis);
+            curve->setMonotonicX(true);   // the run's time
             curve->setSamples(pts);
         }
     }
     for (const auto& [c, series] : measured_) {
         if (!(channels_ & channelBit(c))) continue;
-        auto* curve = addCurve(series.label.isEmpty() ? QStringLiteral("measured: ") + channelName(c) : series.label,
-                               QPen(style::measured(), 1.0, Qt::DotLine), onLeftAxis(c) ? QwtPlot::yLeft : rightAxis);
+        DecimatedCurve* curve =
+            curveFor(series.label.isEmpty() ? QStringLiteral("measured: ") + channelName(c) : series.label,
+                     QPen(style::measured(), 1.0, Qt::DotLine), onLeftAxis(c) ? QwtPlot::yLeft : rightAxis);
         QVector<QPointF> pts;
         const size_t n = std::min(series.x.size(), series.y.size());
         for (size_t i = 0; i < n; ++i) pts.append(QPointF(series.x[i], series.y[i] * factor(c)));
+        curve->setMonotonicX(false);   // measured time is not trusted to be sorted
         curve->setSamples(pts);
         curve->setZ(30);
+    }
+    for (QwtPlotCurve* c : old) {
+        c->detach();
+        delete c;
     }
     rescale();
 }

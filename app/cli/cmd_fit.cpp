@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "measured_data.hpp"
 #include "core/identify/fit.hpp"
+#include "core/identify/fit_report.hpp"
 #include "core/identify/preprocess.hpp"
 #include "core/io/csv_table.hpp"
 #include "core/io/dataset.hpp"
@@ -27,7 +28,7 @@ struct FitOptions {
     std::string setup, model = "rate-state", free = "mu,eta,Dc,vc,epsT", manifest, report, residuals;
     double splitTime = 0.0;
     PreprocessSettings pre;
-    bool noBandStop = false, noLowPass = false, noSteadyTrim = false;
+    bool noBandStop = false, noLowPass = false, noSteadyTrim = false, noFilterPrediction = false;
     PredictSettings predict;
     int multistarts = 3, maxIterations = 40;
     std::string robust = "none";
@@ -42,55 +43,6 @@ std::vector<std::string> splitComma(const std::string& s) {
     while (std::getline(in, item, ','))
         if (!item.empty()) out.push_back(item);
     return out;
-}
-
-nlohmann::json numOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-nlohmann::json fitToJson(const DatasetFit& f, const std::string& modelName) {
-    nlohmann::json j;
-    j["model"] = modelName;
-    j["setup"] = toString(f.setup);
-    nlohmann::json params = nlohmann::json::object();
-    for (size_t i = 0; i < f.fit.names.size(); ++i) {
-        const std::string& n = f.fit.names[i];
-        std::string unit;
-        if (n == "zeta") unit = "";
-        else io::paramUnit(n, unit);
-        params[n] = {{"value", f.fit.values[i]}, {"stderr", numOrNull(f.fit.stderrs[i])}, {"free", static_cast<bool>(f.fit.free[i])},
-                     {"unit", unit}};
-    }
-    if (f.model.law == LawKind::RateState && f.model.tieC1ToMu && !f.model.values.count("C1"))
-        params["C1"] = {{"value", f.model.values.at("mu")}, {"stderr", nullptr}, {"free", false}, {"unit", ""}, {"tied_to", "mu"}};
-    j["parameters"] = params;
-    nlohmann::json corr = nlohmann::json::array();
-    const size_t p = f.fit.freeNames.size();
-    for (size_t a = 0; a < p; ++a) {
-        nlohmann::json row = nlohmann::json::array();
-        for (size_t b = 0; b < p; ++b) row.push_back(numOrNull(f.fit.correlation.empty() ? NAN : f.fit.correlation[a * p + b]));
-        corr.push_back(row);
-    }
-    j["correlation"] = {{"names", f.fit.freeNames}, {"matrix", corr}};
-    j["identifiable"] = f.fit.identifiable;
-    j["identifiability"] = f.fit.identifiabilityMessage;
-    j["condition_number"] = numOrNull(f.fit.conditionNumber);
-    nlohmann::json runs = nlohmann::json::array();
-    for (const RunScore& r : f.runs) {
-        nlohmann::json o = {{"file", r.file}, {"role", r.role}, {"samples", r.samples}, {"rms", numOrNull(r.rms_N)},
-                            {"nrmse", numOrNull(r.nrmse)}, {"rms_force_N", numOrNull(r.rms_N)}, {"nrmse_force", numOrNull(r.nrmseForce)}};
-        if (f.setup == SetupKind::Dynamics) {
-            o["rms_disp_m"] = numOrNull(r.rms_m);
-            o["nrmse_disp"] = numOrNull(r.nrmseDisp);
-        }
-        if (!r.ok) o["error"] = r.message;
-        runs.push_back(o);
-    }
-    j["runs"] = runs;
-    j["fit_nrmse"] = numOrNull(f.fitNrmse);
-    j["validation_nrmse"] = numOrNull(f.validationNrmse);
-    j["solver"] = {{"summary", f.fit.solverSummary}, {"converged", f.fit.converged}, {"cost", f.fit.cost},
-                   {"residual_rms", f.fit.rms}, {"residuals", f.fit.residualCount}, {"starts", f.fit.startsTried},
-                   {"best_start", f.fit.bestStart}, {"evaluations", f.fit.residualEvaluations}, {"wall_time_s", f.fit.wallTime_s}};
-    return j;
 }
 
 void runFit(const FitOptions& o, int& exitCode) {
@@ -142,6 +94,7 @@ void runFit(const FitOptions& o, int& exitCode) {
     st.setup = setup;
     st.free = splitComma(o.free);
     st.predict = o.predict;
+    if (o.noFilterPrediction) st.predict.filterPrediction = false;
     st.multistarts = o.multistarts;
     st.maxIterations = o.maxIterations;
     st.seed = o.seed;
@@ -185,21 +138,11 @@ void runFit(const FitOptions& o, int& exitCode) {
                   << ", " << f.fit.identifiabilityMessage << "\n";
         fits.push_back(std::move(f));
     }
-    nlohmann::json rep = fitToJson(fits.front(), toString(laws.front()));
-    if (fits.size() > 1) {
-        rep["model"] = "both";
-        rep["primary_model"] = toString(laws.front());
-        rep["coulomb"] = fitToJson(fits[1], toString(laws[1]));
-        nlohmann::json cmp = nlohmann::json::array();
-        for (size_t i = 0; i < fits[0].runs.size() && i < fits[1].runs.size(); ++i)
-            cmp.push_back({{"file", fits[0].runs[i].file}, {"role", fits[0].runs[i].role},
-                           {"nrmse_rate_state", numOrNull(fits[0].runs[i].nrmse)}, {"nrmse_coulomb", numOrNull(fits[1].runs[i].nrmse)}});
-        rep["comparison"] = cmp;
-    }
+    std::vector<const DatasetFit*> fitted;
+    for (const DatasetFit& f : fits) fitted.push_back(&f);
+    nlohmann::json rep = fitReportJson(fitted);
     rep["preprocessing"] = preJson;
-    rep["prediction"] = {{"stride", o.predict.stride}, {"substeps", o.predict.substeps}, {"warmup_s", o.predict.warmup_s},
-                         {"dt_s", o.predict.dt_s}, {"segment_s", o.predict.segment_s}, {"segment_spacing_s", o.predict.segmentSpacing_s},
-                         {"residual_stride", o.predict.residualStride}};
+    rep["prediction"] = toJson(st.predict);
     rep["t_N_convention"] = setup == SetupKind::Prescribed
         ? "t_N of each run is its known load (normal force column, else the band tension column, else manifest/--run-set); "
           "mu, C1 and eta are per unit of that load, so for a band brake mu absorbs the band's force amplification"
@@ -266,6 +209,7 @@ void addFitCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--trim-start", o->pre.trim.start_s, "drop this many seconds at the start [s]");
     cmd->add_option("--trim-end", o->pre.trim.end_s, "drop this many seconds at the end [s]");
     cmd->add_option("--stage-harmonics", o->pre.stageFourierOrder, "dynamics: stage input = Fourier fit with this many harmonics (0 = measured)")->capture_default_str();
+    cmd->add_flag("--no-filter-prediction", o->noFilterPrediction, "compare the raw prediction with the cleaned measurement (default: pass the prediction through the same filter)");
     cmd->add_flag("--no-steady-trim", o->noSteadyTrim, "keep ramps (do not trim to the steady drive amplitude)");
     cmd->add_option("--stride", o->predict.stride, "prescribed: decimation of the measured samples")->capture_default_str();
     cmd->add_option("--substeps", o->predict.substeps, "prescribed: law steps per decimated sample")->capture_default_str();

@@ -20,7 +20,7 @@ namespace {
 
 struct IdentifyCliOptions {
     std::vector<std::string> data, validateOn, columns, units, runSets, candidates;
-    std::string setup, manifest, report, html, free = "mu,C1,eta,vc";
+    std::string setup, manifest, report, html, free = "mu,C1,eta,vc", dynamicsResidual = "auto";
     identify::PreprocessSettings pre;
     bool noBandStop = false, noLowPass = false, noSteadyTrim = false, quiet = false;
     identify::IdentifyOptions id;
@@ -43,6 +43,14 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
         std::cerr << "stickslip-cli identify: " << msg << "\n";
         exitCode = code;
     };
+    IdentifyOptions idOpt = o.id;
+    if (o.dynamicsResidual == "auto") idOpt.dynamicsResidual = DynamicsResidual::Auto;
+    else if (o.dynamicsResidual == "equation-error") idOpt.dynamicsResidual = DynamicsResidual::EquationError;
+    else if (o.dynamicsResidual == "segments") idOpt.dynamicsResidual = DynamicsResidual::Segments;
+    else {
+        fail("--dynamics-residual: '" + o.dynamicsResidual + "' is not one of auto, equation-error, segments", kBadArguments);
+        return;
+    }
     io::Dataset fitData, valData;
     SetupKind setup = SetupKind::Prescribed;
     if (!loadMeasuredData("identify", o, fitData, valData, setup, exitCode)) return;
@@ -72,7 +80,7 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
     };
     if (!add(fitData, false) || !add(valData, true)) return;
 
-    IdentifyOptions opt = o.id;
+    IdentifyOptions opt = idOpt;
     opt.freeLaw = splitComma(o.free);
     for (const std::string& n : opt.freeLaw) {
         FitParameter fp;
@@ -128,6 +136,10 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--decimate", o->id.decimate, "use every n-th sample")->capture_default_str();
     cmd->add_option("--substeps", o->id.substeps, "prescribed: law steps per used sample")->capture_default_str();
     cmd->add_option("--multistarts", o->id.multistarts, "starting points per fit")->capture_default_str();
+    cmd->add_option("--dynamics-residual", o->dynamicsResidual,
+                    "dynamics set-up: auto, equation-error or segments (re-initialised simulations)")->capture_default_str();
+    cmd->add_option("--max-segments", o->id.maxSegmentsPerRun, "segment residual: at most this many segments per run")
+        ->capture_default_str();
     cmd->add_option("--seed", o->id.seed, "random seed (the loop is reproducible)")->capture_default_str();
     cmd->add_option("--epsT", o->id.start.epsT_N_per_m, "tangential penalty stiffness held fixed [N/m]")->capture_default_str();
     cmd->add_option("--Dc", o->id.start.Dc_m, "critical slip distance held fixed [m]")->capture_default_str();

@@ -26,6 +26,7 @@ struct RunOutcome {
     ModelSettings settings;      // what was run
     std::vector<ModelRun> runs;  // primary law first
     double elapsed_ms = 0;       // wall time of the job on the worker
+    double cpu_ms = 0;           // CPU time of the job's own thread (the overlaid law's thread not counted)
     bool ok() const;
     QString failureText() const;  // every failed run's message, in words ("" if all ok)
 };

@@ -13,10 +13,12 @@
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
+#include <QTimer>
 
 #include "core/io/csv_table.hpp"
 #include "core/io/run_csv.hpp"
 #include "core/presets.hpp"
+#include "identify_panel.hpp"
 #include "parameter_panel.hpp"
 #include "simulation_controller.hpp"
 #include "sweep_dialogs.hpp"
@@ -35,6 +37,7 @@ MainWindow::MainWindow(bool restoreSettings, QWidget* parent) : QMainWindow(pare
     views_ = new ViewSet(this);
     sweepDialog_ = new SweepDialog(controller_, [this] { return panel_->settings(); }, this);
     mapDialog_ = new MapDialog(controller_, [this] { return panel_->settings(); }, this);
+    identify_ = new IdentifyPanel;
     buildDocks();
     buildMenus();
     runLabel_ = new QLabel(this);
@@ -47,6 +50,7 @@ MainWindow::MainWindow(bool restoreSettings, QWidget* parent) : QMainWindow(pare
     connect(controller_, &SimulationController::sweepFinished, this, [this] { raiseView("bifurcation"); });
     connect(controller_, &SimulationController::mapFinished, views_, &ViewSet::showMap);
     connect(controller_, &SimulationController::mapFinished, this, [this] { raiseView("map"); });
+    connect(identify_, &IdentifyPanel::statusMessage, this, [this](const QString& m) { statusBar()->showMessage(m, 6000); });
 
     resize(1280, 800);
     if (useSettings_) {
@@ -95,6 +99,15 @@ void MainWindow::buildDocks() {
         }
     }
     if (tabHost) tabHost->raise();
+    // Identify (measured runs): a large workspace over the plot views, hidden until asked for.
+    auto* idd = new QDockWidget(tr("Identify"), this);
+    idd->setObjectName("dock_identify");
+    idd->setWidget(identify_);
+    docks_.insert("identify", idd);
+    addDockWidget(Qt::RightDockWidgetArea, idd);
+    if (first) tabifyDockWidget(first, idd);
+    idd->hide();
+    if (first) first->raise();
     resizeDocks({pd}, {400}, Qt::Horizontal);
     resizeDocks({first, docks_.value("rig")}, {430, 330}, Qt::Vertical);
     resizeDocks({docks_.value("rig"), tabHost}, {380, 480}, Qt::Horizontal);
@@ -166,6 +179,14 @@ void MainWindow::buildMenus() {
     a->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+M")));
     a = analysis->addAction(tr("&Cancel all jobs"), controller_, &SimulationController::cancelAll);
     a->setShortcut(QKeySequence(Qt::Key_Escape));
+
+    QMenu* data = menuBar()->addMenu(tr("&Data"));
+    a = data->addAction(tr("&Identify…"), this, &MainWindow::showIdentify);
+    a->setShortcut(QKeySequence(QStringLiteral("Ctrl+I")));
+    data->addAction(tr("Open measured &runs…"), this, [this] {
+        showIdentify();
+        identify_->openImport();
+    });
 
     QMenu* view = menuBar()->addMenu(tr("&View"));
     for (auto* d : docks_) view->addAction(d->toggleViewAction());
@@ -270,6 +291,17 @@ void MainWindow::raiseView(const QString& viewId) {
     }
 }
 
+void MainWindow::showIdentify() {
+    QDockWidget* d = docks_.value("identify");
+    const bool wasHidden = d->isHidden();
+    d->show();
+    d->raise();
+    // Give the workspace most of the height the first time it opens.
+    // (after the layout has placed the dock, hence queued)
+    if (wasHidden && !d->isFloating())
+        QTimer::singleShot(0, this, [this, d] { resizeDocks({d, docks_.value("rig")}, {height() * 3 / 4, height() / 5}, Qt::Vertical); });
+}
+
 void MainWindow::exportView(const QString& viewId) {
     const ViewSet::View* v = views_->find(viewId);
     if (!v || !v->plot) return;
@@ -309,6 +341,7 @@ void MainWindow::rebuildRecentMenu() {
 
 void MainWindow::closeEvent(QCloseEvent* e) {
     controller_->cancelAll();
+    identify_->cancel();
     if (useSettings_) {
         QSettings st;
         st.setValue("window/geometry", saveGeometry());

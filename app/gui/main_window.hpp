@@ -20,6 +20,7 @@ class SimulationController;
 class ViewSet;
 class SweepDialog;
 class MapDialog;
+class IdentifyPanel;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -33,6 +34,9 @@ public:
     ViewSet* views() const { return views_; }
     SweepDialog* sweepDialog() const { return sweepDialog_; }
     MapDialog* mapDialog() const { return mapDialog_; }
+    IdentifyPanel* identifyPanel() const { return identify_; }
+    // Shows and raises the Identify dock (Data ▸ Identify…).
+    void showIdentify();
     QDockWidget* dock(const QString& viewId) const { return docks_.value(viewId); }
     QString statusText() const;
     // Number of run outcomes shown so far.
@@ -70,6 +74,7 @@ private:
     ViewSet* views_ = nullptr;
     SweepDialog* sweepDialog_ = nullptr;
     MapDialog* mapDialog_ = nullptr;
+    IdentifyPanel* identify_ = nullptr;
     QHash<QString, QDockWidget*> docks_;
     QLabel* runLabel_ = nullptr;
     QMenu* recentMenu_ = nullptr;

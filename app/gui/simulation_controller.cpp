@@ -3,6 +3,7 @@
 #include <QtConcurrent/QtConcurrentRun>
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <future>
 
 #include "core/analysis/correlation.hpp"
@@ -33,6 +34,13 @@ void analyse(ModelRun& mr, SetupKind setup) {
 }
 
 double msSince(const QElapsedTimer& t) { return t.nsecsElapsed() / 1.0e6; }
+
+// CPU time of the calling thread [ms] (what the job cost, whatever the machine's load).
+double threadCpuMs() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
 
 }  // namespace
 
@@ -66,21 +74,17 @@ SimulationController::SimulationController(QObject* parent) : QObject(parent) {
     qRegisterMetaType<MapOutcome>();
     qRegisterMetaType<SweepOptions>();
     qRegisterMetaType<MapOptions>();
-    timer_.setSingleShot(true);
-    timer_.setInterval(30);
-    connect(&timer_, &QTimer::timeout, this, &SimulationController::fire);
     // One thread per kind of job, so a long sweep never queues a parameter change.
     pool_.setMaxThreadCount(kJobKinds);
 }
 
 SimulationController::~SimulationController() {
-    timer_.stop();
     cancelAll();
     pool_.waitForDone();
 }
 
 bool SimulationController::isIdle() const {
-    return !timer_.isActive() && std::none_of(slots_.begin(), slots_.end(), [](const Slot& s) {
+    return std::none_of(slots_.begin(), slots_.end(), [](const Slot& s) {
                return s.busy || s.hasPending;
            });
 }
@@ -89,12 +93,9 @@ void SimulationController::requestRun(const ModelSettings& settings) {
     pending_ = settings;
     slots_[int(JobKind::Run)].hasPending = true;
     slots_[int(JobKind::Poincare)].hasPending = poincareEnabled_;
-    // Leading edge: start now when no window is open; then hold later changes for one
-    // interval so a slider drag becomes at most one job per interval.
-    if (!timer_.isActive()) {
-        fire();
-        timer_.start();
-    }
+    // Leading edge: a free kind starts now; a busy one cancels its stale job and starts the
+    // newest settings when that returns (a drag becomes one job per job duration, no delay).
+    fire();
 }
 
 void SimulationController::fire() {
@@ -125,9 +126,8 @@ void SimulationController::jobReturned(JobKind kind, quint64 generation, bool wa
     Slot& s = slots_[int(kind)];
     if (generation == s.generation) s.busy = false;
     Q_UNUSED(wasCancelled);
-    // Newer settings waited for this job: start them unless the throttle window is open
-    // (then the timer starts them).
-    if ((kind == JobKind::Run || kind == JobKind::Poincare) && s.hasPending && !timer_.isActive()) fire();
+    // Newer settings waited for this job: start them now.
+    if ((kind == JobKind::Run || kind == JobKind::Poincare) && s.hasPending) fire();
 }
 
 void SimulationController::launchRun(const ModelSettings& settings) {
@@ -137,6 +137,7 @@ void SimulationController::launchRun(const ModelSettings& settings) {
     QtConcurrent::run(&pool_, [this, token, gen, settings]() {
         QElapsedTimer clock;
         clock.start();
+        const double cpu0 = threadCpuMs();
         RunControl ctl;
         ctl.cancel = token.get();
         RunOutcome out;
@@ -158,6 +159,7 @@ void SimulationController::launchRun(const ModelSettings& settings) {
             one(0);
         }
         out.elapsed_ms = msSince(clock);
+        out.cpu_ms = threadCpuMs() - cpu0;
         const bool cancelled = token->load();
         QMetaObject::invokeMethod(
             this,

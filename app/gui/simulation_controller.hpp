@@ -2,19 +2,18 @@
 //
 // Kinds of job: Run (time series, loops, phase portrait, rig, spectrum, autocorrelation),
 // Poincaré section, bifurcation Sweep, periodicity Map. At most one job of each kind is in
-// flight. Parameter changes (Run and Poincaré) are throttled by a single-shot timer
-// (coalesceInterval, 30 ms): the first change starts at once when idle, later ones inside
-// the window are merged and the newest parameters win. A newer request cancels the job in
-// flight through its own std::atomic<bool> (the core's RunControl::cancel), and the newest
-// request starts as soon as the cancelled job returns. Every job works on its own copy of
-// the parameters; results come back as value types through queued signals.
+// flight. Parameter changes (Run and Poincaré) are throttled on the leading edge: a change
+// starts its job at once when no job of that kind is in flight; while one is, changes are
+// merged (the newest parameters win), the stale job is cancelled through its own
+// std::atomic<bool> (the core's RunControl::cancel), and the newest request starts as soon
+// as the cancelled job returns. Every job works on its own copy of the parameters; results
+// come back as value types through queued signals.
 #pragma once
 
 #include <QElapsedTimer>
 #include <QFuture>
 #include <QObject>
 #include <QThreadPool>
-#include <QTimer>
 #include <array>
 #include <atomic>
 #include <memory>
@@ -32,8 +31,6 @@ public:
     explicit SimulationController(QObject* parent = nullptr);
     ~SimulationController() override;   // cancels every job and waits for it
 
-    void setCoalesceInterval(int ms) { timer_.setInterval(ms); }
-    int coalesceInterval() const { return timer_.interval(); }
     // Whether parameter changes also compute the Poincaré section (costly for long runs).
     void setPoincareEnabled(bool on) { poincareEnabled_ = on; }
 
@@ -70,7 +67,7 @@ private:
         int cancelledJobs = 0;
         bool hasPending = false;                    // Run/Poincaré: newer settings wait
     };
-    void fire();                       // timer window opened/ended: start or cancel
+    void fire();                       // start pending jobs whose kind is free, cancel stale ones
     void launchRun(const ModelSettings& s);
     void launchPoincare(const ModelSettings& s);
     void jobReturned(JobKind kind, quint64 generation, bool wasCancelled);
@@ -78,7 +75,6 @@ private:
 
     std::array<Slot, kJobKinds> slots_;
     ModelSettings pending_;
-    QTimer timer_;
     QThreadPool pool_;
     bool poincareEnabled_ = true;
 };

@@ -1,5 +1,6 @@
 #include "sweep_dialogs.hpp"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
@@ -49,43 +50,70 @@ double scaleOf(const QComboBox* key) { return paramScale(key->currentData().toSt
 
 QString seconds(double ms) { return QStringLiteral("%1 s").arg(ms / 1000.0, 0, 'f', 2); }
 
-// The part every long-running dialog shares below its form: progress bar, status line and
-// Run / Cancel / Close (Close hides the dialog; Cancel starts disabled).
-struct RunControls {
-    QProgressBar* progress;
-    QLabel* status;
-    QPushButton* run;
-    QPushButton* cancel;
-};
-
-RunControls addRunControls(QDialog* dialog, QFormLayout* form, const QString& statusText, const QString& cancelText) {
-    RunControls c;
-    c.progress = new QProgressBar(dialog);
-    c.progress->setRange(0, 1000);
-    c.status = new QLabel(statusText, dialog);
-    c.status->setWordWrap(true);
-    c.run = new QPushButton(QObject::tr("Run"), dialog);
-    c.cancel = new QPushButton(cancelText, dialog);
-    c.cancel->setEnabled(false);
-    auto* close = new QPushButton(QObject::tr("Close"), dialog);
-    auto* buttons = new QHBoxLayout;
-    buttons->addStretch(1);
-    buttons->addWidget(c.run);
-    buttons->addWidget(c.cancel);
-    buttons->addWidget(close);
-    auto* top = new QVBoxLayout(dialog);
-    top->addLayout(form);
-    top->addWidget(c.progress);
-    top->addWidget(c.status);
-    top->addLayout(buttons);
-    QObject::connect(close, &QPushButton::clicked, dialog, &QDialog::hide);
-    return c;
-}
-
 }  // namespace
 
+RunDialog::RunDialog(SimulationController* controller, SettingsSource current, QWidget* parent)
+    : QDialog(parent), controller_(controller), current_(std::move(current)) {}
+
+void RunDialog::addRunControls(QFormLayout* form, const QString& statusText, const QString& cancelText) {
+    progress_ = new QProgressBar(this);
+    progress_->setRange(0, 1000);
+    progress_->setValue(0);
+    status_ = new QLabel(statusText, this);
+    status_->setWordWrap(true);
+    runButton_ = new QPushButton(tr("Run"), this);
+    cancelButton_ = new QPushButton(cancelText, this);
+    cancelButton_->setEnabled(false);
+    auto* close = new QPushButton(tr("Close"), this);
+    auto* buttons = new QHBoxLayout;
+    buttons->addStretch(1);
+    buttons->addWidget(runButton_);
+    buttons->addWidget(cancelButton_);
+    buttons->addWidget(close);
+    auto* top = new QVBoxLayout(this);
+    top->addLayout(form);
+    top->addWidget(progress_);
+    top->addWidget(status_);
+    top->addLayout(buttons);
+    connect(close, &QPushButton::clicked, this, &QDialog::hide);
+    connect(runButton_, &QPushButton::clicked, this, &RunDialog::start);
+    connect(cancelButton_, &QPushButton::clicked, this, &RunDialog::cancelRun);
+}
+
+void RunDialog::showProgress(double fraction) { progress_->setValue(static_cast<int>(fraction * 1000.0)); }
+
+QString RunDialog::statusText() const { return status_->text(); }
+
+bool RunDialog::beginRun(const ParamIssues& issues) {
+    if (!issues.empty()) {
+        status_->setText(QString::fromStdString(formatIssues(issues)));
+        return false;
+    }
+    progress_->setValue(0);
+    status_->setText(tr("Running…"));
+    runButton_->setEnabled(false);
+    cancelButton_->setEnabled(true);
+    return true;
+}
+
+void RunDialog::requestCancel(JobKind kind) {
+    controller_->cancel(kind);
+    status_->setText(tr("Cancelling…"));
+}
+
+void RunDialog::endRun(const QString& failure, bool cancelled, const QString& cancelledText, const QString& doneText) {
+    runButton_->setEnabled(true);
+    cancelButton_->setEnabled(false);
+    if (!failure.isEmpty()) status_->setText(tr("Failed: %1").arg(failure));
+    else if (cancelled) status_->setText(cancelledText);
+    else {
+        progress_->setValue(1000);
+        status_->setText(doneText);
+    }
+}
+
 SweepDialog::SweepDialog(SimulationController* controller, SettingsSource current, QWidget* parent)
-    : QDialog(parent), controller_(controller), current_(std::move(current)) {
+    : RunDialog(controller, std::move(current), parent) {
     setWindowTitle(tr("Bifurcation sweep"));
     setObjectName("sweepDialog");
     auto* form = new QFormLayout;
@@ -98,6 +126,9 @@ SweepDialog::SweepDialog(SimulationController* controller, SettingsSource curren
     direction_->addItem(tr("down"), int(SweepDirection::Down));
     direction_->addItem(tr("up and down (overlaid)"), int(SweepDirection::Both));
     direction_->setCurrentIndex(2);
+    concurrent_ = new QCheckBox(tr("Run both branches at once (down starts from rest at the top value)"), this);
+    concurrent_->setToolTip(tr("About halves the wall time on two cores. Each branch still carries its state from value "
+                               "to value, so hysteresis shows; only the down branch's starting state differs."));
     settle_ = intBox(this, 0, 1000000, 50);
     sample_ = intBox(this, 1, 1000000, 50);
     form->addRow(tr("Parameter"), key_);
@@ -105,20 +136,14 @@ SweepDialog::SweepDialog(SimulationController* controller, SettingsSource curren
     form->addRow(tr("To"), to_);
     form->addRow(tr("Values"), steps_);
     form->addRow(tr("Direction"), direction_);
+    form->addRow(QString(), concurrent_);
+    connect(direction_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this] {
+        concurrent_->setEnabled(static_cast<SweepDirection>(direction_->currentData().toInt()) == SweepDirection::Both);
+    });
     form->addRow(tr("Settle cycles per value"), settle_);
     form->addRow(tr("Sampled cycles per value"), sample_);
-    const RunControls rc = addRunControls(this, form, tr("The state is carried from one value to the next (continuation)."),
-                                          tr("Cancel sweep"));
-    progress_ = rc.progress;
-    progress_->setValue(0);
-    status_ = rc.status;
-    runButton_ = rc.run;
-    cancelButton_ = rc.cancel;
-
-    connect(runButton_, &QPushButton::clicked, this, &SweepDialog::start);
-    connect(cancelButton_, &QPushButton::clicked, this, &SweepDialog::cancelSweep);
-    connect(controller_, &SimulationController::sweepProgress, this,
-            [this](double f) { progress_->setValue(static_cast<int>(f * 1000.0)); });
+    addRunControls(form, tr("The state is carried from one value to the next (continuation)."), tr("Cancel sweep"));
+    connect(controller_, &SimulationController::sweepProgress, this, &SweepDialog::showProgress);
     connect(controller_, &SimulationController::sweepFinished, this, &SweepDialog::onFinished);
 }
 
@@ -131,6 +156,7 @@ SweepOptions SweepDialog::options() const {
     o.steps = steps_->value();
     o.direction = static_cast<SweepDirection>(direction_->currentData().toInt());
     o.mode = SweepMode::Continuation;
+    o.concurrentBranches = o.direction == SweepDirection::Both && concurrent_->isChecked();
     o.settleCycles = settle_->value();
     o.sampleCycles = sample_->value();
     return o;
@@ -143,51 +169,32 @@ void SweepDialog::setOptions(const SweepOptions& o) {
     to_->setValue(o.to * sc);
     steps_->setValue(o.steps);
     direction_->setCurrentIndex(direction_->findData(int(o.direction)));
+    concurrent_->setChecked(o.concurrentBranches);
     settle_->setValue(static_cast<int>(o.settleCycles));
     sample_->setValue(static_cast<int>(o.sampleCycles));
 }
 
-QString SweepDialog::statusText() const { return status_->text(); }
-
 void SweepDialog::start() {
     const ModelSettings s = current_();
     const SweepOptions o = options();
-    const ParamIssues issues = o.validate(s.params);
-    if (!issues.empty()) {
-        status_->setText(QString::fromStdString(formatIssues(issues)));
-        return;
-    }
-    progress_->setValue(0);
-    status_->setText(tr("Running…"));
-    runButton_->setEnabled(false);
-    cancelButton_->setEnabled(true);
-    controller_->startSweep(s, o);
+    if (beginRun(o.validate(s.params))) controller_->startSweep(s, o);
 }
 
-void SweepDialog::cancelSweep() {
-    controller_->cancel(JobKind::Sweep);
-    status_->setText(tr("Cancelling…"));
-}
+void SweepDialog::cancelRun() { requestCancel(JobKind::Sweep); }
 
 void SweepDialog::onFinished(const SweepOutcome& o) {
-    runButton_->setEnabled(true);
-    cancelButton_->setEnabled(false);
     size_t points = 0;
     QStringList failures;
     for (const auto& [law, r] : o.results) {
         points += r.points.size();
         if (r.status == RunStatus::Failed) failures << QString::fromStdString(r.message);
     }
-    if (!failures.isEmpty()) status_->setText(tr("Failed: %1").arg(failures.join("; ")));
-    else if (o.cancelled()) status_->setText(tr("Cancelled after %1 values (%2).").arg(points).arg(seconds(o.elapsed_ms)));
-    else {
-        progress_->setValue(1000);
-        status_->setText(tr("Done: %1 values in %2.").arg(points).arg(seconds(o.elapsed_ms)));
-    }
+    endRun(failures.join("; "), o.cancelled(), tr("Cancelled after %1 values (%2).").arg(points).arg(seconds(o.elapsed_ms)),
+           tr("Done: %1 values in %2.").arg(points).arg(seconds(o.elapsed_ms)));
 }
 
 MapDialog::MapDialog(SimulationController* controller, SettingsSource current, QWidget* parent)
-    : QDialog(parent), controller_(controller), current_(std::move(current)) {
+    : RunDialog(controller, std::move(current), parent) {
     setWindowTitle(tr("Periodicity map"));
     setObjectName("mapDialog");
     auto* form = new QFormLayout;
@@ -211,16 +218,8 @@ MapDialog::MapDialog(SimulationController* controller, SettingsSource current, Q
     form->addRow(tr("y values"), steps2_);
     form->addRow(tr("Settle cycles per cell"), settle_);
     form->addRow(tr("Sampled cycles per cell"), sample_);
-    const RunControls rc =
-        addRunControls(this, form, tr("Every cell starts from rest; cells run in parallel."), tr("Cancel map"));
-    progress_ = rc.progress;
-    status_ = rc.status;
-    runButton_ = rc.run;
-    cancelButton_ = rc.cancel;
-    connect(runButton_, &QPushButton::clicked, this, &MapDialog::start);
-    connect(cancelButton_, &QPushButton::clicked, this, &MapDialog::cancelMap);
-    connect(controller_, &SimulationController::mapProgress, this,
-            [this](double f) { progress_->setValue(static_cast<int>(f * 1000.0)); });
+    addRunControls(form, tr("Every cell starts from rest; cells run in parallel."), tr("Cancel map"));
+    connect(controller_, &SimulationController::mapProgress, this, &MapDialog::showProgress);
     connect(controller_, &SimulationController::mapFinished, this, &MapDialog::onFinished);
 }
 
@@ -242,35 +241,18 @@ MapOptions MapDialog::options() const {
 void MapDialog::start() {
     const ModelSettings s = current_();
     const MapOptions o = options();
-    const ParamIssues issues = o.validate(s.params);
-    if (!issues.empty()) {
-        status_->setText(QString::fromStdString(formatIssues(issues)));
-        return;
-    }
-    progress_->setValue(0);
-    status_->setText(tr("Running…"));
-    runButton_->setEnabled(false);
-    cancelButton_->setEnabled(true);
-    controller_->startMap(s, o);
+    if (beginRun(o.validate(s.params))) controller_->startMap(s, o);
 }
 
-void MapDialog::cancelMap() {
-    controller_->cancel(JobKind::Map);
-    status_->setText(tr("Cancelling…"));
-}
+void MapDialog::cancelRun() { requestCancel(JobKind::Map); }
 
 void MapDialog::onFinished(const MapOutcome& o) {
-    runButton_->setEnabled(true);
-    cancelButton_->setEnabled(false);
     size_t done = 0;
     for (auto d : o.map.done) done += d ? 1 : 0;
-    if (o.map.status == RunStatus::Failed) status_->setText(tr("Failed: %1").arg(QString::fromStdString(o.map.message)));
-    else if (o.map.status == RunStatus::Cancelled)
-        status_->setText(tr("Cancelled: %1 of %2 cells (%3).").arg(done).arg(o.map.done.size()).arg(seconds(o.elapsed_ms)));
-    else {
-        progress_->setValue(1000);
-        status_->setText(tr("Done: %1 cells in %2.").arg(done).arg(seconds(o.elapsed_ms)));
-    }
+    const QString failure = o.map.status == RunStatus::Failed ? QString::fromStdString(o.map.message) : QString();
+    endRun(failure, o.map.status == RunStatus::Cancelled,
+           tr("Cancelled: %1 of %2 cells (%3).").arg(done).arg(o.map.done.size()).arg(seconds(o.elapsed_ms)),
+           tr("Done: %1 cells in %2.").arg(done).arg(seconds(o.elapsed_ms)));
 }
 
 }  // namespace stickslip::gui

@@ -10,7 +10,9 @@
 #include "core/analysis/sweep.hpp"
 #include "model_settings.hpp"
 
+class QCheckBox;
 class QComboBox;
+class QFormLayout;
 class QDoubleSpinBox;
 class QSpinBox;
 class QProgressBar;
@@ -22,62 +24,80 @@ namespace stickslip::gui {
 class SimulationController;
 struct SweepOutcome;
 struct MapOutcome;
+enum class JobKind;
 
 using SettingsSource = std::function<ModelSettings()>;
 
-class SweepDialog : public QDialog {
+// What every long-running dialog shares below its form: a progress bar, a status line and
+// Run / Cancel / Close (Close hides the dialog; Cancel is enabled only while a run is in flight).
+class RunDialog : public QDialog {
     Q_OBJECT
 public:
-    SweepDialog(SimulationController* controller, SettingsSource current, QWidget* parent = nullptr);
-
-    SweepOptions options() const;          // SI values
-    void setOptions(const SweepOptions&);  // shows them
     QPushButton* runButton() const { return runButton_; }
     QPushButton* cancelButton() const { return cancelButton_; }
     QProgressBar* progressBar() const { return progress_; }
     QString statusText() const;
 
 public slots:
-    void start();
-    void cancelSweep();
+    virtual void start() = 0;      // validate the options, then start the job on the controller
+    virtual void cancelRun() = 0;  // cancel the job in flight
+
+protected:
+    RunDialog(SimulationController* controller, SettingsSource current, QWidget* parent);
+    // Lays out `form`, then the progress bar, status line and buttons.
+    void addRunControls(QFormLayout* form, const QString& statusText, const QString& cancelText);
+    void showProgress(double fraction);  // 0..1
+    // Shows the issues and returns false when there are any; else switches to "running".
+    bool beginRun(const ParamIssues& issues);
+    void requestCancel(JobKind kind);
+    // Back to idle: shows the failure if non-empty, else the cancelled or done text.
+    void endRun(const QString& failure, bool cancelled, const QString& cancelledText, const QString& doneText);
+
+    SimulationController* controller_;
+    SettingsSource current_;
+
+private:
+    QProgressBar* progress_ = nullptr;
+    QPushButton* runButton_ = nullptr;
+    QPushButton* cancelButton_ = nullptr;
+    QLabel* status_ = nullptr;
+};
+
+class SweepDialog : public RunDialog {
+    Q_OBJECT
+public:
+    SweepDialog(SimulationController* controller, SettingsSource current, QWidget* parent = nullptr);
+
+    SweepOptions options() const;          // SI values
+    void setOptions(const SweepOptions&);  // shows them
+
+    void start() override;
+    void cancelRun() override;
 
 private:
     void onFinished(const SweepOutcome& o);
-    SimulationController* controller_;
-    SettingsSource current_;
     QComboBox* key_;
     QDoubleSpinBox *from_, *to_;
     QSpinBox *steps_, *settle_, *sample_;
     QComboBox* direction_;
-    QProgressBar* progress_;
-    QPushButton *runButton_, *cancelButton_;
-    QLabel* status_;
+    QCheckBox* concurrent_;
 };
 
-class MapDialog : public QDialog {
+class MapDialog : public RunDialog {
     Q_OBJECT
 public:
     MapDialog(SimulationController* controller, SettingsSource current, QWidget* parent = nullptr);
 
     MapOptions options() const;
-    QPushButton* runButton() const { return runButton_; }
-    QPushButton* cancelButton() const { return cancelButton_; }
-    QProgressBar* progressBar() const { return progress_; }
 
-public slots:
-    void start();
-    void cancelMap();
+    void start() override;
+    void cancelRun() override;
 
 private:
     void onFinished(const MapOutcome& o);
-    SimulationController* controller_;
-    SettingsSource current_;
     QComboBox *key1_, *key2_;
     QDoubleSpinBox *from1_, *to1_, *from2_, *to2_;
     QSpinBox *steps1_, *steps2_, *settle_, *sample_;
-    QProgressBar* progress_;
-    QPushButton *runButton_, *cancelButton_;
-    QLabel* status_;
 };
 
 }  // namespace stickslip::gui

@@ -6,6 +6,7 @@
 #include "time_series_controls.hpp"
 
 #include <cmath>
+#include <memory>
 
 #include "core/io/csv_table.hpp"
 #include "widgets/autocorrelation_plot.hpp"
@@ -63,29 +64,55 @@ const ViewSet::View* ViewSet::find(const QString& id) const {
 }
 
 void ViewSet::showRun(const RunOutcome& o) {
-    lastRun_ = o;
-    const double period = o.settings.params.drive.period();
+    // One copy, shared by the views that are hidden now and redraw when shown (tabs behind
+    // others, closed docks): only visible views redraw on every result.
+    showShared(std::make_shared<const RunOutcome>(o));
+}
+
+void ViewSet::showShared(const std::shared_ptr<const RunOutcome>& shared) {
+    lastRun_ = shared;
+    const RunOutcome& o = *shared;
     const bool prescribed = o.settings.params.setup == SetupKind::Prescribed;
-    spectrum_->setValueTitle(prescribed ? QStringLiteral("PSD of F/t_N [1/Hz]") : QStringLiteral("PSD of x [m²/Hz]"));
-    for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
-        const ModelRun* mr = nullptr;
-        for (const auto& r : o.runs)
-            if (r.law == law) mr = &r;
-        if (!mr || mr->run.samples.empty()) {
-            for (PlotWidget* p : {static_cast<PlotWidget*>(timeSeries_), static_cast<PlotWidget*>(loop_),
-                                  static_cast<PlotWidget*>(phase_), static_cast<PlotWidget*>(spectrum_),
-                                  static_cast<PlotWidget*>(acf_)})
-                p->clearModel(law);
-            continue;
+    // The run of `law` in the outcome, or nullptr (also when it recorded nothing).
+    auto runOf = [](const RunOutcome& out, LawKind law) -> const ModelRun* {
+        for (const auto& r : out.runs)
+            if (r.law == law && !r.run.samples.empty()) return &r;
+        return nullptr;
+    };
+    const double period = o.settings.params.drive.period();
+    timeSeries_->updateWhenVisible([this, shared, runOf, period] {
+        for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+            if (const ModelRun* mr = runOf(*shared, law)) timeSeries_->setRun(mr->run, period, law);
+            else timeSeries_->clearModel(law);
         }
-        timeSeries_->setRun(mr->run, period, law);
-        loop_->setRun(mr->run, period, law);
-        phase_->setRun(mr->run, law);
-        if (!mr->spectrumFreq_Hz.empty()) spectrum_->setSpectrum(mr->spectrumFreq_Hz, mr->spectrumPsd, law);
-        else spectrum_->clearModel(law);
-        if (!mr->acf.empty()) acf_->setAutocorrelation(mr->acfLag_s, mr->acf, law);
-        else acf_->clearModel(law);
-    }
+    });
+    loop_->updateWhenVisible([this, shared, runOf, period] {
+        for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+            if (const ModelRun* mr = runOf(*shared, law)) loop_->setRun(mr->run, period, law);
+            else loop_->clearModel(law);
+        }
+    });
+    phase_->updateWhenVisible([this, shared, runOf] {
+        for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+            if (const ModelRun* mr = runOf(*shared, law)) phase_->setRun(mr->run, law);
+            else phase_->clearModel(law);
+        }
+    });
+    spectrum_->updateWhenVisible([this, shared, runOf, prescribed] {
+        spectrum_->setValueTitle(prescribed ? QStringLiteral("PSD of F/t_N [1/Hz]") : QStringLiteral("PSD of x [m²/Hz]"));
+        for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+            const ModelRun* mr = runOf(*shared, law);
+            if (mr && !mr->spectrumFreq_Hz.empty()) spectrum_->setSpectrum(mr->spectrumFreq_Hz, mr->spectrumPsd, law);
+            else spectrum_->clearModel(law);
+        }
+    });
+    acf_->updateWhenVisible([this, shared, runOf] {
+        for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+            const ModelRun* mr = runOf(*shared, law);
+            if (mr && !mr->acf.empty()) acf_->setAutocorrelation(mr->acfLag_s, mr->acf, law);
+            else acf_->clearModel(law);
+        }
+    });
     if (!o.runs.empty() && !o.runs.front().run.samples.empty())
         rig_->setRun(o.runs.front().run, o.settings.paramsFor(o.runs.front().law));
     else
@@ -200,8 +227,7 @@ void ViewSet::clearMeasured() {
     // TimeSeriesPlot keeps its channel overlays until clearAll(); show the last run again.
     timeSeries_->clearAll();
     loop_->clearMeasured();
-    const RunOutcome last = lastRun_;
-    showRun(last);
+    if (lastRun_) showShared(lastRun_);
 }
 
 }  // namespace stickslip::gui

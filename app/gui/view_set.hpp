@@ -5,6 +5,7 @@
 #include <QObject>
 #include <QString>
 #include <QVector>
+#include <memory>
 
 #include "job_results.hpp"
 
@@ -68,8 +69,9 @@ public slots:
     void showMap(const stickslip::gui::MapOutcome& outcome);
 
 private:
+    void showShared(const std::shared_ptr<const RunOutcome>& outcome);
     QVector<View> views_;
-    RunOutcome lastRun_;   // re-shown after clearing measured overlays
+    std::shared_ptr<const RunOutcome> lastRun_;   // re-shown after clearing measured overlays
     widgets::TimeSeriesPlot* timeSeries_ = nullptr;
     widgets::FrictionLoopPlot* loop_ = nullptr;
     widgets::PhasePortraitPlot* phase_ = nullptr;

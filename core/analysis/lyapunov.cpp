@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <limits>
+#include <memory>
+#include <mutex>
+#include <thread>
 
 namespace stickslip {
 
@@ -63,9 +67,63 @@ ParamIssues LyapunovOptions::validate() const {
     return out;
 }
 
+namespace {
+
+// Advances the companion trajectory by one cycle at a time on its own thread, on request:
+// start() hands it a cycle, finish() waits for it and returns its report.
+class CompanionWorker {
+public:
+    CompanionWorker(const DynamicsModel& m, DynState& pert, long n, const RunControl& ctl)
+        : thread_([this, &m, &pert, n, &ctl] {
+              long seen = 0;
+              for (;;) {
+                  std::unique_lock<std::mutex> lk(mu_);
+                  cv_.wait(lk, [&] { return requested_ > seen || quit_; });
+                  if (requested_ == seen) return;  // quit with nothing pending
+                  seen = requested_;
+                  lk.unlock();
+                  StepReport r = advanceQuiet(m, pert, n, ctl);
+                  lk.lock();
+                  report_ = std::move(r);
+                  finished_ = seen;
+                  cv_.notify_all();
+              }
+          }) {}
+    CompanionWorker(const CompanionWorker&) = delete;
+    CompanionWorker& operator=(const CompanionWorker&) = delete;
+    ~CompanionWorker() {
+        {
+            std::lock_guard<std::mutex> lk(mu_);
+            quit_ = true;
+        }
+        cv_.notify_all();
+        thread_.join();
+    }
+    void start() {
+        std::lock_guard<std::mutex> lk(mu_);
+        ++requested_;
+        cv_.notify_all();
+    }
+    StepReport finish() {
+        std::unique_lock<std::mutex> lk(mu_);
+        cv_.wait(lk, [&] { return finished_ == requested_; });
+        return report_;
+    }
+
+private:
+    std::mutex mu_;
+    std::condition_variable cv_;
+    long requested_ = 0, finished_ = 0;
+    bool quit_ = false;
+    StepReport report_;
+    std::thread thread_;  // last: starts after the members it uses exist
+};
+
+}  // namespace
+
 LyapunovResult largestLyapunovFrom(const DynamicsModel& m, DynState& ref, long stepsPerPeriod, long cycles,
                                    double d0, const SeparationScales& sc, const RunControl& ctl,
-                                   PoincareSection* section) {
+                                   PoincareSection* section, bool companionThread) {
     LyapunovResult res;
     const double period = m.dt_s * static_cast<double>(stepsPerPeriod);
     RunControl quiet{ctl.cancel, {}};
@@ -78,9 +136,20 @@ LyapunovResult largestLyapunovFrom(const DynamicsModel& m, DynState& ref, long s
     // A collapsed separation (both trajectories land on the same stuck state) counts as a
     // contraction by 1e-16 per cycle: far below any chaotic growth, and finite.
     const double floorLog = std::log(1e-16);
+    std::unique_ptr<CompanionWorker> worker;
+    if (companionThread && cycles > 1) worker = std::make_unique<CompanionWorker>(m, pert, stepsPerPeriod, quiet);
     for (long c = 0; c < cycles; ++c) {
-        StepReport rep = detail::advanceSampledCycle(m, ref, stepsPerPeriod, sec, stuck, quiet);
-        if (rep.status == RunStatus::Ok) rep = advanceQuiet(m, pert, stepsPerPeriod, quiet);
+        StepReport rep;
+        if (worker) {
+            // Both trajectories advance one cycle at once; the reference's failure comes first.
+            worker->start();
+            rep = detail::advanceSampledCycle(m, ref, stepsPerPeriod, sec, stuck, quiet);
+            StepReport repPert = worker->finish();
+            if (rep.status == RunStatus::Ok) rep = std::move(repPert);
+        } else {
+            rep = detail::advanceSampledCycle(m, ref, stepsPerPeriod, sec, stuck, quiet);
+            if (rep.status == RunStatus::Ok) rep = advanceQuiet(m, pert, stepsPerPeriod, quiet);
+        }
         if (rep.status != RunStatus::Ok || ctl.cancelled()) {
             res.status = rep.status != RunStatus::Ok ? rep.status : RunStatus::Cancelled;
             res.message = rep.status != RunStatus::Ok ? rep.message : "cancelled";

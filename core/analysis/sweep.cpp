@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <iterator>
 #include <limits>
 #include <mutex>
 #include <numbers>
+#include <thread>
 
 #include "lyapunov.hpp"
 #include "parallel.hpp"
@@ -76,7 +79,7 @@ namespace {
 
 // One value: settle, then sample (with the Lyapunov companion when asked) from state s.
 void runValue(const SimParams& p, const SweepOptions& opt, long n, DynState& s, const DynamicsModel& m,
-              SweepPoint& pt, const RunControl& quiet) {
+              SweepPoint& pt, const RunControl& quiet, bool companionThread = false) {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     pt.lyapunovPerCycle = pt.lyapunovPerSecond = nan;
     if (!opt.lyapunov) {
@@ -89,7 +92,7 @@ void runValue(const SimParams& p, const SweepOptions& opt, long n, DynState& s, 
             pt.section.message = rep.message;
         } else {
             LyapunovResult ly = largestLyapunovFrom(m, s, n, opt.sampleCycles, opt.lyapunovD0, separationScales(p),
-                                                    quiet, &pt.section);
+                                                    quiet, &pt.section, companionThread);
             if (ly.ok()) {
                 pt.lyapunovPerCycle = ly.perCycle;
                 pt.lyapunovPerSecond = ly.perSecond;
@@ -103,6 +106,64 @@ std::string valueMessage(const std::string& key, double v, const std::string& ms
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.9g", v);
     return key + " = " + buf + ": " + msg;
+}
+
+// One continuation branch: the values in order, the state carried from each to the next.
+struct Branch {
+    std::vector<SweepPoint> points;  // the values finished (all of them when status is Ok)
+    RunStatus status = RunStatus::Ok;
+    std::string message;
+    double failedValue = 0;
+};
+
+// Runs `values` in order, tagged `direction`, the state carried from each value to the next.
+// The first value continues from *carry when continueCarry (clock reset to the section phase);
+// otherwise it starts from rest at the section phase, followed by `leadInCycles` discarded
+// cycles at that value. When carry is given it holds the state after the last value on return.
+void runBranch(const SimParams& base, const SweepOptions& opt, long n, const std::vector<double>& values,
+               int direction, DynState* carry, bool continueCarry, long leadInCycles, bool companionThread,
+               const RunControl& quiet, const std::function<void()>& valueDone, Branch& out) {
+    out.points.reserve(values.size());
+    const long offset = detail::phaseOffsetSteps(opt.phase_rad, n);
+    DynState local;
+    DynState& s = carry ? *carry : local;
+    const bool fromRest = !(carry && continueCarry);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        SimParams p = base;
+        setParam(p, opt.key, values[i]);
+        const DynamicsModel m = poincareModel(p, n);
+        if (i == 0 && fromRest) {
+            s = m.initialState(0.0);
+            StepReport rep = advanceQuiet(m, s, offset, quiet);
+            if (rep.status == RunStatus::Ok && leadInCycles > 0)
+                rep = detail::settleCycles(m, s, n, leadInCycles, quiet);
+            if (rep.status != RunStatus::Ok) {
+                out.status = rep.status;
+                out.message = rep.message;
+                out.failedValue = values[i];
+                return;
+            }
+        }
+        if (i > 0 || !fromRest || leadInCycles > 0) {
+            // Carry (x, v, a, F, α) over; restart the clock at the section phase of the new drive,
+            // so the stage period and phase follow the new value (f may be the key). After a
+            // lead-in this puts the clock where a continued branch has it.
+            s.t = static_cast<double>(offset) * m.dt_s;
+            s.u = m.stage.displacement(s.t);
+        }
+        SweepPoint pt;
+        pt.value = values[i];
+        pt.direction = direction;
+        runValue(p, opt, n, s, m, pt, quiet, companionThread);
+        if (pt.section.status != RunStatus::Ok) {
+            out.status = pt.section.status;
+            out.message = pt.section.message;
+            out.failedValue = values[i];
+            return;
+        }
+        out.points.push_back(std::move(pt));
+        valueDone();
+    }
 }
 
 }  // namespace
@@ -128,46 +189,59 @@ SweepResult bifurcationSweep(const SimParams& base, const SweepOptions& opt, con
     };
 
     if (opt.mode == SweepMode::Continuation) {
-        std::vector<std::pair<double, int>> plan;
-        if (opt.direction != SweepDirection::Down)
-            for (double v : up) plan.push_back({v, +1});
-        if (opt.direction != SweepDirection::Up)
-            for (double v : down) plan.push_back({v, -1});
-        res.points.reserve(plan.size());
-        DynState s;
-        bool first = true;
-        for (std::size_t i = 0; i < plan.size(); ++i) {
-            const SimParams p = paramsFor(plan[i].first);
-            const DynamicsModel m = poincareModel(p, n);
-            const long offset = detail::phaseOffsetSteps(opt.phase_rad, n);
-            if (first) {
-                s = m.initialState(0.0);
-                first = false;
-                StepReport rep = advanceQuiet(m, s, offset, quiet);
-                if (rep.status != RunStatus::Ok) {
-                    res.status = rep.status;
-                    res.message = valueMessage(opt.key, plan[i].first, rep.message);
-                    return res;
-                }
+        // Progress over every value of every branch, possibly from two threads.
+        const std::size_t total = (opt.direction == SweepDirection::Both ? 2 : 1) * up.size();
+        std::mutex progressLock;
+        std::size_t finished = 0;
+        auto valueDone = [&] {
+            if (!ctl.progress) return;
+            std::lock_guard<std::mutex> lk(progressLock);
+            ++finished;
+            ctl.progress(static_cast<double>(finished) / static_cast<double>(total));
+        };
+        Branch upBranch, downBranch;
+        // A single branch at a time: the Lyapunov companion trajectory gets the second thread.
+        const bool twoBranchesAtOnce = opt.direction == SweepDirection::Both && opt.concurrentBranches;
+        const bool companion = opt.lyapunov && !twoBranchesAtOnce && workerCount(opt.threads, 2) >= 2;
+        if (opt.direction == SweepDirection::Up) {
+            runBranch(base, opt, n, up, +1, nullptr, false, 0, companion, quiet, valueDone, upBranch);
+        } else if (opt.direction == SweepDirection::Down) {
+            runBranch(base, opt, n, down, -1, nullptr, false, 0, companion, quiet, valueDone, downBranch);
+        } else if (!opt.concurrentBranches) {
+            // The paper's way: the down branch continues from the up branch's end state.
+            DynState s;
+            runBranch(base, opt, n, up, +1, &s, false, 0, companion, quiet, valueDone, upBranch);
+            if (upBranch.status == RunStatus::Ok)
+                runBranch(base, opt, n, down, -1, &s, true, 0, companion, quiet, valueDone, downBranch);
+        } else {
+            // Independent branches: the down branch starts from rest at the top value with a
+            // lead-in as long as the up branch's stay there (settle + sample cycles), so the two
+            // can run at once. Each is a pure function of (params, options): the same result on
+            // one thread or two.
+            const long leadIn = opt.settleCycles + opt.sampleCycles;
+            auto runDown = [&] {
+                runBranch(base, opt, n, down, -1, nullptr, false, leadIn, false, quiet, valueDone, downBranch);
+            };
+            if (workerCount(opt.threads, 2) >= 2) {
+                std::thread downThread(runDown);
+                runBranch(base, opt, n, up, +1, nullptr, false, 0, companion, quiet, valueDone, upBranch);
+                downThread.join();
             } else {
-                // Carry (x, v, a, F, α) over; restart the clock at the section phase of the new
-                // drive, so the stage period and phase follow the new value (f may be the key).
-                s.t = static_cast<double>(offset) * m.dt_s;
-                s.u = m.stage.displacement(s.t);
+                runBranch(base, opt, n, up, +1, nullptr, false, 0, companion, quiet, valueDone, upBranch);
+                runDown();
             }
-            SweepPoint pt;
-            pt.value = plan[i].first;
-            pt.direction = plan[i].second;
-            runValue(p, opt, n, s, m, pt, quiet);
-            const RunStatus st = pt.section.status;
-            const std::string msg = pt.section.message;
-            if (st == RunStatus::Ok) res.points.push_back(std::move(pt));
-            if (st != RunStatus::Ok) {
-                res.status = st;
-                res.message = st == RunStatus::Cancelled ? "cancelled" : valueMessage(opt.key, plan[i].first, msg);
-                return res;
-            }
-            if (ctl.progress) ctl.progress(static_cast<double>(i + 1) / static_cast<double>(plan.size()));
+        }
+        res.points = std::move(upBranch.points);
+        res.points.insert(res.points.end(), std::make_move_iterator(downBranch.points.begin()),
+                          std::make_move_iterator(downBranch.points.end()));
+        // The first problem in branch order (up, then down) is the one reported. (A failure in
+        // one concurrent branch does not stop the other, so the points kept stay deterministic.)
+        for (const Branch* b : {&upBranch, &downBranch}) {
+            if (b->status == RunStatus::Ok) continue;
+            res.status = b->status;
+            res.message = b->status == RunStatus::Cancelled ? "cancelled"
+                                                             : valueMessage(opt.key, b->failedValue, b->message);
+            break;
         }
         return res;
     }

@@ -3,9 +3,20 @@
 //  - Continuation (the paper's way): the state is carried from one value to the next,
 //    upwards, downwards or both (down starts from the end of the up branch, so hysteresis
 //    shows as the two branches differing). Sequential by nature.
+//    With concurrentBranches (direction both only) the down branch instead starts from rest at
+//    the top value and first runs there as long as the up branch does (settle + sample cycles,
+//    discarded), then continues downwards exactly as before. The two branches are then
+//    independent and run at the same time on two threads (threads ≠ 1), about halving the wall
+//    time; each branch still carries its state from value to value, so hysteresis (values
+//    where the branches settle on different attractors) still shows. Only the state the down
+//    branch starts from differs, so where attractors coexist it can pick another one (Fig. 20
+//    sweep, 300 values: its down branch differs in class from the sequential one at 5 values,
+//    all next to irregular windows). The result is the same on one thread or two.
 //  - Independent: every value starts from rest; values run in parallel on `threads`
 //    threads. Each value is a pure function of (params, value), so the result is
 //    bit-identical whatever the thread count.
+// Lyapunov exponent (lyapunov): in continuation with one branch at a time and threads ≠ 1, the
+// companion trajectory runs on a second thread (same result, bit for bit).
 // Progress: fraction of values done (called under a lock, possibly from worker threads).
 // Cancel: polled every 4096 steps; the result then holds the values finished so far.
 #pragma once
@@ -37,7 +48,8 @@ struct SweepOptions {
     long sampleCycles = 100;        // per value, Poincaré samples kept [cycles]
     long stepsPerPeriod = 0;        // N, dt = T/N; 0 = from params dt
     double phase_rad = 0.0;         // section phase [rad]
-    int threads = 0;                // independent mode; 0 = all hardware threads
+    int threads = 0;                // independent mode, concurrent branches, Lyapunov companion; 0 = all cores
+    bool concurrentBranches = false;  // continuation, both: down branch from rest at the top, concurrent (above)
     bool lyapunov = false;          // also compute the largest Lyapunov exponent per value (2× cost)
     double lyapunovD0 = 1e-7;       // scaled separation for the Lyapunov companion trajectory
     ClassifyOptions classify;

@@ -222,6 +222,7 @@ Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation, dou
     int lagsUsed = 0;
     size_t nDec = 0;
     std::vector<double> acfPooled;
+    double varSum = 0, diffSum = 0;  // Σ (r − mean)², Σ (r_i − r_{i−1})²/2 over the decimated runs
     double ss = 0;
     size_t count = 0;
     decimation = std::max(decimation, 1);
@@ -236,6 +237,11 @@ Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation, dou
         std::vector<double> dec;
         for (size_t i = 0; i < run.residual.size(); i += decimation) dec.push_back(run.residual[i]);
         if (dec.size() < 30) continue;
+        const double mean = std::accumulate(dec.begin(), dec.end(), 0.0) / static_cast<double>(dec.size());
+        for (size_t i = 0; i < dec.size(); ++i) {
+            varSum += (dec[i] - mean) * (dec[i] - mean);
+            if (i > 0) diffSum += 0.5 * (dec[i] - dec[i - 1]) * (dec[i] - dec[i - 1]) * dec.size() / (dec.size() - 1.0);
+        }
         const int h = static_cast<int>(std::min<size_t>(20, dec.size() / 5));
         const auto acf = autocorrelation(dec, h);
         double Q = 0, p = 1;
@@ -256,6 +262,8 @@ Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation, dou
         d.whiteness.ljungBoxQ = Qsum;
         d.whiteness.pValue = chiSquareSurvival(Qsum, lagsUsed);
         d.whiteness.white = d.whiteness.pValue >= 0.01;
+        d.whiteness.structureRatio = diffSum > 0 ? varSum / diffSum - 1.0 : 0.0;
+        d.whiteness.structured = !d.whiteness.white && d.whiteness.structureRatio > Whiteness::kStructureRatioLimit;
     }
     if (!runs.empty() && runs[longest].t_s.size() > 4) {
         const DiagnosticRun& run = runs[longest];

@@ -51,6 +51,15 @@ struct Whiteness {
     double ljungBoxQ = 0;      // Q = n(n+2) Σ ρ_k²/(n−k)
     double pValue = 1;         // P(χ²_lags > Q)
     bool white = true;         // p ≥ 0.01
+    // Size of the structure, not only its significance (with thousands of samples Ljung–Box
+    // rejects for any model error, however small): the residual variance over the noise
+    // variance estimated from successive differences (von Neumann, σ²_n = Σ(r_i − r_{i−1})²/2(n−1)),
+    // minus one. ≈ 0 (± 2/√n) for white noise; a slowly varying model error raises it.
+    double structureRatio = 0;
+    // Structure that matters: not white AND structureRatio > kStructureRatioLimit, i.e. the
+    // slowly varying part carries more than a third of the residual variance.
+    bool structured = false;
+    static constexpr double kStructureRatioLimit = 0.5;
 };
 
 struct Diagnostics {

@@ -132,6 +132,9 @@ struct DatasetFitSettings {
     double lossScale = 1.0;
     uint64_t seed = 20260101;
     int maxIterations = 40;
+    // Runs are predicted on this many threads at once (each run on one thread; results do not
+    // depend on it). 0 = std::thread::hardware_concurrency().
+    int threads = 0;
     const std::atomic<bool>* cancel = nullptr;
     std::function<void(double)> progress;
 };
@@ -161,6 +164,15 @@ struct DatasetFit {
     std::vector<RunScore> runs;      // fit runs first, then validation runs
     double fitNrmse = 0.0;           // pooled over the fit runs
     double validationNrmse = 0.0;    // pooled over the validation runs (NaN when none)
+    // Honest standard errors. The Jacobian formula assumes independent residuals; neighbouring
+    // residuals of one run (one shooting segment) are correlated (filtered noise, a wrong
+    // initial state persisting through a segment). tauInt = 1 + 2 Σ ρ_k (pooled autocorrelation
+    // of the residuals at the optimum within contiguous stretches, summed until ρ_k < 0.05) is
+    // the number of residuals per independent one (n_eff = n/τ_int), and the REPORTED
+    // fit.stderrs are the Jacobian ones times sqrt(tauInt) (≥ 1). stderrsIid keeps the
+    // Jacobian (independent-residual) values, in fit.names order.
+    double tauInt = 1.0;
+    std::vector<double> stderrsIid;
 };
 
 DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& validationRuns,

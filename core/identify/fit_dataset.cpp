@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #include "fit.hpp"
 
@@ -179,20 +180,40 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         layout.push_back(p.index);
     }
     prob.residualCount = count;
-    prob.residuals = [&](const std::vector<double>& vals, std::vector<double>& r) {
+    // Offset of each run's block in the residual vector, so that runs can be filled in any order.
+    std::vector<size_t> offset(fitRuns.size(), 0);
+    for (size_t k = 1; k < fitRuns.size(); ++k)
+        offset[k] = offset[k - 1] + layout[k - 1].size() * (st.setup == SetupKind::Dynamics ? 2 : 1);
+    const size_t threads = std::min(fitRuns.size(), st.threads > 0 ? static_cast<size_t>(st.threads)
+                                                                   : std::max<size_t>(1, std::thread::hardware_concurrency()));
+    prob.residuals = [&, offset, threads](const std::vector<double>& vals, std::vector<double>& r) {
         const ModelSpec m = specFor(vals);
-        size_t o = 0;
-        for (size_t k = 0; k < fitRuns.size(); ++k) {
-            const Prediction p = predictRun(fitRuns[k], st.setup, m, st.predict);
-            if (!p.ok || p.index.size() != layout[k].size()) return false;
-            const std::vector<double>& F = fitRuns[k].run[Signal::Friction];
-            for (size_t j = 0; j < p.index.size(); ++j) {
-                r[o++] = (p.force_N[j] - F[p.index[j]]) / normF[k];
-                if (st.setup == SetupKind::Dynamics)
-                    r[o++] = (p.slider_m[j] - fitRuns[k].run[Signal::SliderDisp][p.index[j]]) / normX[k];
+        // Runs are independent: predicted on `threads` threads (run k on worker k mod threads,
+        // each writing only its own block of r), which gives the same numbers as one thread.
+        std::vector<char> ok(fitRuns.size(), 0);
+        auto work = [&](size_t w) {
+            for (size_t k = w; k < fitRuns.size(); k += threads) {
+                const Prediction p = predictRun(fitRuns[k], st.setup, m, st.predict);
+                if (!p.ok || p.index.size() != layout[k].size()) continue;
+                const std::vector<double>& F = fitRuns[k].run[Signal::Friction];
+                size_t o = offset[k];
+                for (size_t j = 0; j < p.index.size(); ++j) {
+                    r[o++] = (p.force_N[j] - F[p.index[j]]) / normF[k];
+                    if (st.setup == SetupKind::Dynamics)
+                        r[o++] = (p.slider_m[j] - fitRuns[k].run[Signal::SliderDisp][p.index[j]]) / normX[k];
+                }
+                ok[k] = 1;
             }
+        };
+        if (threads <= 1) {
+            work(0);
+        } else {
+            std::vector<std::thread> pool;
+            for (size_t w = 1; w < threads; ++w) pool.emplace_back(work, w);
+            work(0);
+            for (std::thread& t : pool) t.join();
         }
-        return o == r.size();
+        return count == r.size() && std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
     };
     prob.multistarts = st.multistarts;
     prob.loss = st.loss;
@@ -212,6 +233,41 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         return out;
     }
     out.model = specFor(out.fit.values);
+    // Integrated autocorrelation time of the residuals at the optimum (see fit.hpp).
+    {
+        std::vector<double> r(count, 0.0);
+        if (prob.residuals(out.fit.values, r)) {
+            const size_t nc = st.setup == SetupKind::Dynamics ? 2 : 1;
+            const size_t maxLag = 200;
+            std::vector<double> acc(maxLag + 1, 0.0);
+            for (size_t k = 0; k < fitRuns.size(); ++k) {
+                const std::vector<size_t>& ix = layout[k];
+                size_t step = std::numeric_limits<size_t>::max();
+                for (size_t j = 1; j < ix.size(); ++j) step = std::min(step, ix[j] - ix[j - 1]);
+                for (size_t c = 0; c < nc; ++c) {
+                    size_t b = 0;
+                    for (size_t j = 1; j <= ix.size(); ++j) {
+                        if (j < ix.size() && ix[j] - ix[j - 1] == step) continue;
+                        // contiguous stretch [b, j)
+                        for (size_t lag = 0; lag <= maxLag && b + lag < j; ++lag)
+                            for (size_t i = b; i + lag < j; ++i)
+                                acc[lag] += r[offset[k] + i * nc + c] * r[offset[k] + (i + lag) * nc + c];
+                        b = j;
+                    }
+                }
+            }
+            double tau = 1.0;
+            for (size_t lag = 1; lag <= maxLag && acc[0] > 0.0; ++lag) {
+                const double rho = acc[lag] / acc[0];
+                if (rho < 0.05) break;
+                tau += 2.0 * rho;
+            }
+            out.tauInt = tau;
+        }
+        out.stderrsIid = out.fit.stderrs;
+        const double inflate = std::sqrt(std::max(1.0, out.tauInt));
+        for (double& se : out.fit.stderrs) se *= inflate;
+    }
     double sseF = 0, ssF = 0, sseV = 0, ssV = 0;
     for (const CleanRun& c : fitRuns) {
         RunScore s = scoreRun(c, st.setup, out.model, st.predict, "fit");

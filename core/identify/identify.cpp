@@ -7,6 +7,9 @@
 #include <map>
 #include <numeric>
 
+#include <Eigen/Dense>
+
+#include "../integrate/dynamics.hpp"
 #include "fit.hpp"
 
 namespace stickslip::identify {
@@ -78,13 +81,33 @@ struct Prepared {
     const IdentifyRun* run = nullptr;
     std::vector<double> t, g, V, F, a, x, xd;
     double invRmsF = 1.0;
+    // Dynamics, segment residual: smoothed slider state, cleaned stage motion, slip so far,
+    // segments [first, last] of samples (each starts mid-slide).
+    std::vector<double> xs, vs, u, Vs, cumSlip;
+    std::vector<std::pair<size_t, size_t>> segments;
+    double invRmsX = 1.0;
+    bool stageHarmonic = false;
+    double uc0 = 0, ua = 0, ub = 0, omega = 0;  // u = uc0 + ua cos ωt + ub sin ωt when harmonic
     size_t size() const { return t.size(); }
+    double stageAt(double tt) const {
+        if (stageHarmonic) return uc0 + ua * std::cos(omega * tt) + ub * std::sin(omega * tt);
+        const double dt = t[1] - t[0];
+        const double q = std::clamp((tt - t.front()) / dt, 0.0, static_cast<double>(t.size() - 1));
+        const size_t i = std::min(static_cast<size_t>(q), t.size() - 2);
+        const double w = q - static_cast<double>(i);
+        return u[i] * (1.0 - w) + u[i + 1] * w;
+    }
 };
 
-// The parameter vector of a model: names → values; which names are free.
+// The model (effects, in order added) and how its dynamics residual is formed.
 struct Spec {
     std::vector<std::string> effects;   // catalogue names, in order added
+    bool segments = false;              // dynamics: segment simulation instead of equation error
 };
+
+bool actsInStick(const std::string& effect) {
+    return effect == "backlash" || effect == "presliding_compliance" || effect == "stick_healing";
+}
 
 struct Context {
     std::vector<Prepared> runs;
@@ -133,9 +156,80 @@ ExtendedModel buildModel(const Context& cx, const Spec& spec, const std::map<std
 }
 
 // Residuals of one run appended to `r`; per-run sum of squares and count; predicted force.
+// Dynamics, Segments: re-initialised simulations (see DynamicsResidual in identify.hpp).
+// Residuals: n slider-displacement then n force entries (0 outside the segments).
+bool segmentResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, double mass, std::vector<double>& r,
+                      double& ss, double& count, std::vector<double>* predicted, std::vector<char>* used,
+                      std::vector<double>* frictionResidual) {
+    const IdentifyRun& run = *p.run;
+    const size_t n = p.size();
+    const size_t base = r.size();
+    r.resize(base + 2 * n, 0.0);
+    if (predicted) predicted->assign(n, kNaN);
+    if (used) used->assign(n, 0);
+    if (frictionResidual) frictionResidual->assign(n, 0.0);
+    if (n < 3) return true;
+    const double mm = std::isfinite(mass) ? mass : run.nominalMass_kg;
+    const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
+    const double ms = m.effects.sensorInertia ? m.effects.sensorInertia->mass_kg : 0.0;
+    const double tN = run.normalForce_N;
+    RigParams rig;
+    rig.normalForce_N = tN;
+    rig.stiffness_N_per_m = run.stiffness_N_per_m;
+    rig.mass_kg = mm;
+    rig.damping_Ns_per_m = 2.0 * zeta * std::sqrt(run.stiffness_N_per_m * mm);
+    const ExtendedLaw law = ExtendedLaw::make(m);
+    const int sub = std::max(1, cx.opt->segmentSubsteps);
+    const double h = (p.t[1] - p.t[0]) / sub;
+    const stickslip::detail::NewmarkConstants K(rig, law.epsT(), h);
+    const double C2 = m.law.C2();
+    for (const auto& [i0, i1] : p.segments) {
+        // Mid-slide start: slider state measured (smoothed), friction state at its sliding steady state.
+        DynState s;
+        s.t = p.t[i0];
+        s.x = p.xs[i0];
+        s.v = p.vs[i0];
+        s.u = p.stageAt(s.t);
+        const double V = p.Vs[i0], av = std::abs(V), sg = V >= 0 ? 1.0 : -1.0;
+        LawState L = law.initialState(RunContext{tN, run.slipBefore_m + p.cumSlip[i0]});
+        L.alpha = -C2 * av;
+        const double y = tN * (law.muEffective(L, sg, tN) + law.K1(L.alpha));
+        L.force_N = sg * (y + m.law.eta_s_per_m * tN * av);
+        L.aux[1] = 0.0;
+        L.aux[2] = y;
+        if (m.effects.backlash)  // play taken up on the side the force acts on: ε dz(w) = F
+            L.aux[3] = L.force_N / law.epsT() + (L.force_N >= 0 ? 1.0 : -1.0) * m.effects.backlash->halfWidth_m;
+        s.law = L;
+        s.stuck = false;
+        s.slipRate = av;
+        s.a = (L.force_N - rig.damping_Ns_per_m * s.v - rig.stiffness_N_per_m * s.x) / mm;
+        for (size_t i = i0 + 1; i <= i1; ++i) {
+            for (int k = 0; k < sub; ++k) {
+                int nIts = 0, lIts = 0;
+                const char* why = nullptr;
+                double bad = 0;
+                const double u1 = p.stageAt(s.t + h);
+                if (!stickslip::detail::newmarkStep(K, law, static_cast<int*>(nullptr), u1, s,
+                                                    stickslip::Coupling::Newton, nIts, lIts, why, bad))
+                    return false;
+            }
+            const double fSim = s.law.force_N + ms * s.a;
+            const double ex = (s.x - p.x[i]) * p.invRmsX, ef = (fSim - p.F[i]) * p.invRmsF;
+            r[base + i] = ex;
+            r[base + n + i] = ef;
+            ss += ex * ex + ef * ef;
+            count += 2;
+            if (predicted) (*predicted)[i] = fSim;
+            if (used) (*used)[i] = 1;
+            if (frictionResidual) (*frictionResidual)[i] = p.F[i] - fSim;
+        }
+    }
+    return true;
+}
+
 bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, double mass, std::vector<double>& r,
                   double& ss, double& count, std::vector<double>* predicted, std::vector<char>* used,
-                  std::vector<double>* frictionResidual) {
+                  std::vector<double>* frictionResidual, bool segments) {
     const IdentifyRun& run = *p.run;
     RunContext ctx{run.normalForce_N, run.slipBefore_m};
     const size_t n = p.size();
@@ -159,6 +253,7 @@ bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, 
         }
         return true;
     }
+    if (segments) return segmentResiduals(cx, p, m, mass, r, ss, count, predicted, used, frictionResidual);
     // Dynamics: sliding-phase friction channel + equation-of-motion channel.
     const SlipPhasePrediction sp = simulateSlipPhaseForce(m, ctx, p.t, p.V, p.a.empty() ? nullptr : &p.a,
                                                           cx.opt->stickVelocity_mps);
@@ -208,7 +303,12 @@ struct FitOutcome {
 std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const std::map<std::string, double>& start) {
     std::vector<FitParameter> ps;
     const SetupKind setup = cx.anyDynamics ? SetupKind::Dynamics : SetupKind::Prescribed;
-    for (const std::string& n : cx.opt->freeLaw) {
+    // The segment residual resolves stick, where the contact stiffness ε_T acts: ε_T is then
+    // part of the baseline (held fixed, every stick-phase candidate would be credited with
+    // the baseline's wrong stiffness).
+    std::vector<std::string> freeLaw = cx.opt->freeLaw;
+    if (spec.segments && std::find(freeLaw.begin(), freeLaw.end(), "epsT") == freeLaw.end()) freeLaw.push_back("epsT");
+    for (const std::string& n : freeLaw) {
         FitParameter p;
         if (!defaultParameter(n, setup, p)) continue;
         auto it = start.find(n);
@@ -260,7 +360,7 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
         r.clear();
         for (size_t i : idx) {
             double ss = 0, n = 0;
-            if (!runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr)) return false;
+            if (!runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments)) return false;
         }
         return true;
     };
@@ -283,7 +383,7 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
     std::vector<double> r;
     for (size_t i : idx) {
         double ss = 0, n = 0;
-        runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr);
+        runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments);
         out.ss += ss;
         out.count += n;
     }
@@ -303,7 +403,7 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
         std::vector<double> r, fr;
         std::vector<char> used;
         double ss = 0, n = 0;
-        runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, &used, &fr);
+        runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, &used, &fr, spec.segments);
         RunError e;
         e.file = cx.runs[i].run->file;
         e.role = isVal ? "validation" : "fit";
@@ -333,7 +433,7 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
             const ExtendedModel mo = buildModel(cx, spec, f.values, mh);
             std::vector<double> r;
             double ss = 0, n = 0;
-            if (!runResiduals(cx, cx.runs[h], mo, mh, r, ss, n, nullptr, nullptr, nullptr)) continue;
+            if (!runResiduals(cx, cx.runs[h], mo, mh, r, ss, n, nullptr, nullptr, nullptr, spec.segments)) continue;
             me.runs[h].heldOutNrmse = n > 0 ? std::sqrt(ss / n) : 0.0;
             valSS += ss; valN += n;
         }
@@ -352,7 +452,7 @@ Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome&
         std::vector<double> r, fr, pred;
         std::vector<char> used;
         double ss = 0, n = 0;
-        runResiduals(cx, p, m, mass, r, ss, n, &pred, &used, &fr);
+        runResiduals(cx, p, m, mass, r, ss, n, &pred, &used, &fr, spec.segments);
         if (preds) preds->push_back(pred);
         DiagnosticRun d;
         d.t_s = p.t;
@@ -390,6 +490,122 @@ Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome&
         d.correlations.push_back({"eom_slider_accel", pearson(rr, xa)});
     }
     return d;
+}
+
+// Stage motion u = g + x, cleaned: a least-squares harmonic at the run's forcing frequency
+// when it fits to 10 % of its amplitude (the usual drive), else Savitzky–Golay smoothed.
+// Slider x and ẋ smoothed over ±7 samples; relative velocity u̇ − ẋ; segments start at the
+// largest |u̇ − ẋ| of each half forcing period (mid-slide), end at the next start (≤ 1 period).
+void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& opt, Prepared& p) {
+    const size_t N = r.t_s.size();
+    const double dt = (r.t_s.back() - r.t_s.front()) / static_cast<double>(N - 1);
+    std::vector<double> u(N);
+    for (size_t i = 0; i < N; ++i) u[i] = r.slip_m[i] + r.slider_m[i];
+    std::vector<double> ud;
+    if (r.frequency_Hz > 0) {
+        const double w = 2.0 * M_PI * r.frequency_Hz;
+        Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+        Eigen::Vector3d b = Eigen::Vector3d::Zero();
+        for (size_t i = 0; i < N; ++i) {
+            const Eigen::Vector3d phi(1.0, std::cos(w * r.t_s[i]), std::sin(w * r.t_s[i]));
+            A += phi * phi.transpose();
+            b += phi * u[i];
+        }
+        const Eigen::Vector3d c = A.ldlt().solve(b);
+        double ss = 0;
+        for (size_t i = 0; i < N; ++i) {
+            const double e = u[i] - (c[0] + c[1] * std::cos(w * r.t_s[i]) + c[2] * std::sin(w * r.t_s[i]));
+            ss += e * e;
+        }
+        const double amp = std::hypot(c[1], c[2]);
+        if (amp > 0 && std::sqrt(ss / N) < 0.1 * amp) {
+            p.stageHarmonic = true;
+            p.uc0 = c[0]; p.ua = c[1]; p.ub = c[2]; p.omega = w;
+        }
+    }
+    const std::vector<double> us = savitzkyGolay(u, dt, 7, 3, 0), usd = savitzkyGolay(u, dt, 7, 3, 1);
+    const std::vector<double> xs = savitzkyGolay(r.slider_m, dt, 7, 3, 0), vs = savitzkyGolay(r.slider_m, dt, 7, 3, 1);
+    double cum = 0, ssx = 0;
+    for (size_t i = 0; i < N; ++i) {
+        if (i > 0) cum += std::abs(r.slip_m[i] - r.slip_m[i - 1]);
+        ssx += r.slider_m[i] * r.slider_m[i];
+        if (i % dec) continue;
+        const double tt = r.t_s[i];
+        p.u.push_back(p.stageHarmonic ? p.stageAt(tt) : us[i]);
+        const double uDot = p.stageHarmonic ? p.omega * (-p.ua * std::sin(p.omega * tt) + p.ub * std::cos(p.omega * tt)) : usd[i];
+        p.xs.push_back(xs[i]);
+        p.vs.push_back(vs[i]);
+        p.Vs.push_back(uDot - vs[i]);
+        p.cumSlip.push_back(cum);
+    }
+    p.invRmsX = ssx > 0 ? 1.0 / std::sqrt(ssx / N) : 1.0;
+    const size_t n = p.size();
+    if (n < 4) return;
+    const double half = r.frequency_Hz > 0 ? 0.5 / r.frequency_Hz : 0.1;
+    const double dts = p.t[1] - p.t[0];
+    std::vector<size_t> starts;
+    for (size_t i = 0; i < n;) {
+        size_t j = i, bi = n;
+        double best = 0;
+        for (; j < n && p.t[j] < p.t[i] + half; ++j)
+            if (std::abs(p.Vs[j]) > best) { best = std::abs(p.Vs[j]); bi = j; }
+        if (bi < n && best >= 2.0 * opt.stickVelocity_mps) starts.push_back(bi);
+        i = std::max(j, i + 1);
+    }
+    const size_t maxLen = static_cast<size_t>(std::ceil(2.0 * half / dts));
+    std::vector<std::pair<size_t, size_t>> segs;
+    for (size_t k = 0; k < starts.size(); ++k) {
+        const size_t i0 = starts[k];
+        size_t i1 = k + 1 < starts.size() ? starts[k + 1] : n - 1;
+        i1 = std::min(i1, i0 + maxLen);
+        if (i1 > i0 + 1) segs.push_back({i0, i1});
+    }
+    const size_t maxSeg = static_cast<size_t>(std::max(opt.maxSegmentsPerRun, 1));
+    if (segs.size() > maxSeg) {
+        std::vector<std::pair<size_t, size_t>> kept;
+        for (size_t q = 0; q < maxSeg; ++q) kept.push_back(segs[(q * segs.size()) / maxSeg]);
+        segs = std::move(kept);
+    }
+    p.segments = std::move(segs);
+}
+
+// Sum of squared residuals of a model over the runs idx (inf if a run fails).
+double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx) {
+    double mass = kNaN;
+    const ExtendedModel m = buildModel(cx, spec, vals, mass);
+    std::vector<double> r;
+    double tot = 0;
+    for (size_t i : idx) {
+        double ss = 0, n = 0;
+        if (!runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments))
+            return std::numeric_limits<double>::infinity();
+        tot += ss;
+    }
+    return tot;
+}
+
+// Start values of an effect's parameters on top of `cur`: each log-scale parameter in turn
+// is scanned over 9 log-spaced values across its bounds (and its default start), the others
+// held, and the fit starts at the lowest cost. A gradient fit from one default start
+// otherwise stops in the local minimum next to it (a 0.2 mm dead band from a 50 µm start).
+std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, const std::string& effect,
+                                           std::map<std::string, double> vals, const std::vector<size_t>& idx) {
+    EffectInfo info;
+    findEffect(effect, info);
+    for (const EffectParam& q : info.params) vals[effect + "." + q.name] = q.initial;
+    for (const EffectParam& q : info.params) {
+        if (!q.logScale || !(q.lower > 0)) continue;
+        const std::string key = effect + "." + q.name;
+        double bestV = q.initial, bestC = evalSS(cx, s2, vals, idx);
+        for (int k = 0; k < 9; ++k) {
+            const double v = q.lower * std::pow(q.upper / q.lower, k / 8.0);
+            vals[key] = v;
+            const double c = evalSS(cx, s2, vals, idx);
+            if (c < bestC) { bestC = c; bestV = v; }
+        }
+        vals[key] = bestV;
+    }
+    return vals;
 }
 
 // Penalised criterion with the effective number of independent residuals n_eff. The residual
@@ -456,6 +672,7 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
                 p.xd.push_back(r.sliderVel_mps[i]);
             }
         }
+        if (r.setup == SetupKind::Dynamics) prepareSegments(r, dec, opt, p);
         cx.runs.push_back(std::move(p));
     }
     std::vector<size_t> fitIdx, valIdx;
@@ -486,6 +703,7 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
     // Baseline.
     progress("baseline", 0.0);
     Spec spec;
+    spec.segments = cx.anyDynamics && opt.dynamicsResidual == DynamicsResidual::Segments;
     std::map<std::string, double> start;
     if (cx.anyDynamics) start["m"] = runs[fitIdx[0]].nominalMass_kg;
     FitOutcome cur = fitSpec(cx, spec, start, fitIdx, opt.multistarts, res.fits);
@@ -500,72 +718,140 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
     res.diagnosticsBefore = diagnoseModel(cx, spec, cur, &predBefore);
     Diagnostics curDiag = res.diagnosticsBefore;
     double curHeldOut = res.before.validationNrmse;
+    // Segments: the independent units are the segments (each one reversal, stick and breakaway).
+    double segEpisodes = 0;
+    for (size_t i : fitIdx) segEpisodes += static_cast<double>(cx.runs[i].segments.size());
+    res.segmentsUsed = segEpisodes;
+    auto bicOf = [&](const FitOutcome& f, const Spec& s, double tauInt) {
+        const double cap = std::min(f.count / std::max(tauInt, 1.0), s.segments ? std::max(segEpisodes, 2.0) : episodes);
+        return bic(f.ss, f.count, cap, f.nFree);
+    };
+    auto residualName = [&](const Spec& s) {
+        return !cx.anyDynamics ? std::string("prescribed") : s.segments ? std::string("segments") : std::string("equation_error");
+    };
+    res.residual = residualName(spec);
 
     std::map<std::string, CandidateScore> scores;
     for (int round = 1; round <= opt.maxEffects; ++round) {
         if (opt.cancel && opt.cancel->load()) { res.cancelled = true; break; }
-        const double neffCap = std::min(cur.count / std::max(curDiag.integratedAcfTime, 1.0), episodes);
-        const double bicCur = bic(cur.ss, cur.count, neffCap, cur.nFree);
-        std::vector<std::pair<CandidateScore, FitOutcome>> tried;
+        const double bicCur = bicOf(cur, spec, curDiag.integratedAcfTime);
+        // Auto: the current model refitted with the segment residual, for the stick-phase
+        // candidates (lazily, once per round).
+        Spec segSpec = spec;
+        segSpec.segments = true;
+        FitOutcome segBase;
+        bool segBaseTried = false;
+        auto segBaseline = [&]() -> const FitOutcome& {
+            if (!segBaseTried) {
+                segBaseTried = true;
+                progress("round " + std::to_string(round) + ": baseline with the segment residual", 0.0);
+                segBase = fitSpec(cx, segSpec, cur.values, fitIdx, 1, res.fits);
+            }
+            return segBase;
+        };
+        struct Tried {
+            CandidateScore sc;
+            FitOutcome fit;
+            Spec spec;
+        };
+        std::vector<Tried> tried;
         size_t k = 0;
         for (const std::string& c : cands) {
             ++k;
             if (std::find(spec.effects.begin(), spec.effects.end(), c) != spec.effects.end()) continue;
+            if (opt.cancel && opt.cancel->load()) break;
             progress("round " + std::to_string(round) + ": " + c, (k - 1.0) / cands.size());
             CandidateScore sc;
             sc.name = c;
             sc.round = round;
-            EffectInfo info;
-            findEffect(c, info);
-            bool allDyn = true;
-            for (size_t i : fitIdx) allDyn = allDyn && runs[i].setup == SetupKind::Dynamics;
-            // backlash and presliding_compliance act only inside stick, which the rigid-contact
-            // sliding channel does not predict; stick_healing acts at the stick->slip transition,
-            // which that channel does not resolve either (on D05, which has no effect, it absorbed
-            // the transition mismatch): not tested on dynamics data rather than claimed.
-            if (allDyn && (c == "backlash" || c == "presliding_compliance" || c == "stick_healing")) {
-                sc.applicable = false;
-                sc.reason = "not testable with the dynamics residual (rigid-contact sliding channel + equation of motion): "
-                            "acts inside stick or at the stick-slip transition, which that channel does not resolve";
-                scores[c] = sc;
-                continue;
-            }
             Spec s2 = spec;
             s2.effects.push_back(c);
-            const FitOutcome f = fitSpec(cx, s2, cur.values, fitIdx, 1, res.fits);
+            const FitOutcome* base = &cur;
+            double bicBase = bicCur;
+            if (cx.anyDynamics && !spec.segments && actsInStick(c)) {
+                if (opt.dynamicsResidual == DynamicsResidual::EquationError) {
+                    sc.applicable = false;
+                    sc.residual = "equation_error";
+                    sc.reason = "not testable with the equation-error residual (rigid-contact sliding channel + equation of "
+                                "motion): acts inside stick or at the stick-slip transition; use the segment residual";
+                    scores[c] = sc;
+                    continue;
+                }
+                const FitOutcome& sb = segBaseline();
+                if (!sb.ok) {
+                    sc.reason = "baseline fit with the segment residual failed: " + sb.message;
+                    scores[c] = sc;
+                    continue;
+                }
+                s2.segments = true;
+                base = &sb;
+                bicBase = bicOf(sb, segSpec, 1.0);
+            }
+            sc.residual = residualName(s2);
+            const auto st = scannedStart(cx, s2, c, base->values, fitIdx);
+            const FitOutcome f = fitSpec(cx, s2, st, fitIdx, 1, res.fits);
             if (!f.ok) {
                 sc.reason = "fit failed: " + f.message;
                 scores[c] = sc;
                 continue;
             }
-            sc.deltaBic = bic(f.ss, f.count, neffCap, f.nFree) - bicCur;
+            sc.deltaBic = bicOf(f, s2, s2.segments == spec.segments ? curDiag.integratedAcfTime : 1.0) - bicBase;
             sc.fitNrmse = f.count > 0 ? std::sqrt(f.ss / f.count) : 0.0;
             for (const ParamEstimate& p : f.estimates)
                 if (p.name.rfind(c + ".", 0) == 0) sc.params.push_back({p.name.substr(c.size() + 1), p.value, p.stderr_});
-            tried.push_back({sc, f});
+            // An effect whose size parameter (the first in its catalogue entry) ends on a physical
+            // bound has not been identified (the fit wants it outside the physical range, or the
+            // effect has vanished): the improvement it brings is not evidence for this effect.
+            // (Time constants and distances of the other parameters may rightly sit on a bound:
+            // "faster than the data resolve".)
+            {
+                EffectInfo info;
+                findEffect(c, info);
+                std::string atBound;
+                for (const EffectParam& q : std::vector<EffectParam>(info.params.begin(), info.params.begin() + 1)) {
+                    const double v = f.values.count(c + "." + q.name) ? f.values.at(c + "." + q.name) : q.initial;
+                    const bool lo = q.logScale ? v <= q.lower * 1.01 : v <= q.lower + 1e-3 * (q.upper - q.lower);
+                    const bool hi = q.logScale ? v >= q.upper / 1.01 : v >= q.upper - 1e-3 * (q.upper - q.lower);
+                    if ((lo && q.lower != 0.0) || hi) atBound = q.name;
+                }
+                if (!atBound.empty()) {
+                    sc.reason = "parameter " + atBound + " ended on its physical bound: not identified (dBIC " +
+                                std::to_string(sc.deltaBic) + " not credited)";
+                    scores[c] = sc;
+                    continue;
+                }
+            }
+            tried.push_back({sc, f, s2});
         }
         if (tried.empty()) break;
-        std::sort(tried.begin(), tried.end(), [](const auto& a, const auto& b) { return a.first.deltaBic < b.first.deltaBic; });
-        auto& [best, bestFit] = tried.front();
+        std::sort(tried.begin(), tried.end(), [](const auto& a, const auto& b) { return a.sc.deltaBic < b.sc.deltaBic; });
+        CandidateScore& best = tried.front().sc;
+        const FitOutcome& bestFit = tried.front().fit;
+        const Spec s2 = tried.front().spec;
+        const bool switching = s2.segments != spec.segments;
         bool accept = best.deltaBic < -opt.bicMargin;
-        Spec s2 = spec;
-        s2.effects.push_back(best.name);
-        ModelErrors me;
+        ModelErrors me, segBaseErrors;
+        double heldOutRef = curHeldOut;
         if (accept) {
+            if (switching) {
+                progress("round " + std::to_string(round) + ": held-out check of the segment baseline", 1.0);
+                segBaseErrors = errorsOf(cx, segSpec, segBase, fitIdx, valIdx, res.fits);
+                heldOutRef = segBaseErrors.validationNrmse;
+            }
             progress("round " + std::to_string(round) + ": held-out check of " + best.name, 1.0);
             me = errorsOf(cx, s2, bestFit, fitIdx, valIdx, res.fits);
             best.heldOutNrmse = me.validationNrmse;
-            if (std::isfinite(curHeldOut) && std::isfinite(me.validationNrmse) && !(me.validationNrmse < curHeldOut)) {
+            if (std::isfinite(heldOutRef) && std::isfinite(me.validationNrmse) && !(me.validationNrmse < heldOutRef)) {
                 accept = false;
                 best.reason = "lowers the fit error (dBIC " + std::to_string(best.deltaBic) + ") but not the held-out error (" +
-                              std::to_string(me.validationNrmse) + " vs " + std::to_string(curHeldOut) + ")";
+                              std::to_string(me.validationNrmse) + " vs " + std::to_string(heldOutRef) + ")";
             }
         } else {
             best.reason = "best candidate of round " + std::to_string(round) + " but dBIC = " + std::to_string(best.deltaBic) +
                           " is not below -" + std::to_string(opt.bicMargin) + ": improvement within what noise explains";
         }
         for (size_t i = 1; i < tried.size(); ++i) {
-            CandidateScore& sc = tried[i].first;
+            CandidateScore& sc = tried[i].sc;
             if (sc.deltaBic >= -opt.bicMargin)
                 sc.reason = "dBIC = " + std::to_string(sc.deltaBic) + " is not below -" + std::to_string(opt.bicMargin) +
                             ": improvement within what noise explains";
@@ -573,15 +859,24 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
                 sc.reason = "dBIC = " + std::to_string(sc.deltaBic) + " but " + best.name + " scored better in round " +
                             std::to_string(round);
         }
-        for (auto& [sc, f] : tried) scores[sc.name] = sc;
+        for (const Tried& t : tried) scores[t.sc.name] = t.sc;
         if (!accept) break;
         best.accepted = true;
         scores[best.name] = best;
+        if (switching) {
+            // From here on the model is scored with the segment residual: "before" is the
+            // baseline under that residual, so before and after compare like with like.
+            res.before = segBaseErrors;
+            predBefore.clear();
+            res.diagnosticsBefore = diagnoseModel(cx, segSpec, segBase, &predBefore);
+            curDiag = res.diagnosticsBefore;
+            res.residual = "segments";
+        }
         AddedEffect ae;
         ae.name = best.name;
         ae.params = best.params;
         ae.deltaBic = best.deltaBic;
-        ae.heldOutBefore = curHeldOut;
+        ae.heldOutBefore = heldOutRef;
         ae.heldOutAfter = me.validationNrmse;
         EffectInfo info;
         findEffect(best.name, info);
@@ -602,14 +897,16 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
     res.final = cur.estimates;
     std::vector<std::vector<double>> predAfter;
     res.diagnosticsAfter = diagnoseModel(cx, spec, cur, &predAfter);
-    res.unexplained = !res.diagnosticsAfter.whiteness.white;
+    res.unexplained = res.diagnosticsAfter.whiteness.structured;
     if (res.unexplained) {
         const auto& cs = res.diagnosticsAfter.correlations;
         auto top = std::max_element(cs.begin(), cs.end(), [](const auto& a, const auto& b) {
             return std::abs(a.correlation) < std::abs(b.correlation);
         });
         res.unexplainedReason = "residual is not white after the loop (Ljung-Box p = " +
-                                std::to_string(res.diagnosticsAfter.whiteness.pValue) + "); largest correlation: " +
+                                std::to_string(res.diagnosticsAfter.whiteness.pValue) + ") and the structure is large (variance / "
+                                "successive-difference noise variance - 1 = " +
+                                std::to_string(res.diagnosticsAfter.whiteness.structureRatio) + "); largest correlation: " +
                                 (top != cs.end() ? top->signal + " r = " + std::to_string(top->correlation) : "none") +
                                 "; no catalogue candidate lowered the penalised and held-out error further";
     }
@@ -664,7 +961,10 @@ nlohmann::json toJson(const Diagnostics& d, bool withSeries) {
                           {"decimation", d.whiteness.decimation},
                           {"Q", num(d.whiteness.ljungBoxQ)},
                           {"p_value", num(d.whiteness.pValue)},
-                          {"white", d.whiteness.white}}},
+                          {"white", d.whiteness.white},
+                          {"structure_ratio", num(d.whiteness.structureRatio)},
+                          {"structure_ratio_limit", Whiteness::kStructureRatioLimit},
+                          {"structured", d.whiteness.structured}}},
                         {"integrated_acf_time_samples", num(d.integratedAcfTime)},
                         {"spectrum_harmonic_fraction", num(d.spectrum.harmonicFraction)},
                         {"forcing_harmonics_Hz", d.spectrum.harmonics_Hz}};
@@ -710,6 +1010,7 @@ nlohmann::json toJson(const IdentifyResult& r) {
                          {"accepted", c.accepted},
                          {"score", {{"delta_bic", num(c.deltaBic)}, {"fit_nrmse", num(c.fitNrmse)},
                                     {"held_out_nrmse", c.heldOutNrmse >= 0 ? num(c.heldOutNrmse) : nlohmann::json(nullptr)}}},
+                         {"residual", c.residual},
                          {"parameters", toJson(c.params)},
                          {"rejected_because", c.accepted ? nlohmann::json(nullptr) : nlohmann::json(c.reason)}});
     j["candidates"] = cands;
@@ -718,7 +1019,8 @@ nlohmann::json toJson(const IdentifyResult& r) {
     if (r.unexplained) j["unexplained_reason"] = r.unexplainedReason;
     j["selection"] = {{"criterion", "BIC with n_eff = min(n / tau_int, slip episodes); an effect must lower it by more than "
                                     "the margin AND lower the held-out NRMSE (leave-one-run-out, or the --validate-on runs)"},
-                      {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation}};
+                      {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation},
+                      {"residual", r.residual}, {"segments", r.segmentsUsed}};
     j["wall_time_s"] = r.wallTime_s;
     j["fits"] = r.fits;
     return j;

@@ -11,8 +11,13 @@
 // into newtons during stick, so the law is used in its rigid-contact limit along the measured
 // slip velocity (simulateSlipPhaseForce) and compared with the measured force while sliding;
 // a second channel checks the equation of motion F = m ẍ + c ẋ + k x (Eq. 8) at every sample,
-// which is where rig effects (viscous_damping) show. Each channel is divided by the RMS of the
-// run's measured force, so NRMSE = RMS(residual) over the samples a run contributes.
+// which is where rig effects (viscous_damping) show ("equation error"). Effects that act inside
+// stick or at breakaway (backlash, presliding_compliance, stick_healing) are scored with short
+// re-initialised simulations instead ("segments", see DynamicsResidual). Each channel is divided
+// by the RMS of the run's measured signal, so NRMSE = RMS(residual) over the samples a run contributes.
+// Candidate fits start from a scan of each log-scale effect parameter over its bounds.
+// "unexplained": the final residual is not white (Ljung–Box) AND its slowly varying part is
+// large (Whiteness::structured in diagnostics.hpp).
 #pragma once
 
 #include <atomic>
@@ -50,6 +55,21 @@ struct IdentifyRun {
 // From a preprocessed run (samples [begin, end)); false with a message if signals are missing.
 bool makeIdentifyRun(const CleanRun& clean, SetupKind setup, IdentifyRun& out, std::string* error);
 
+// How the dynamics set-up's residual is formed.
+//  EquationError: rigid-contact law along the measured slip velocity while sliding + the
+//    equation-of-motion channel (fast; stick-phase effects cannot act in it).
+//  Segments: short re-initialised simulations (multiple shooting without continuity
+//    constraints): each segment starts mid-slide from the measured slider state (smoothed x,
+//    ẋ; friction state at its sliding steady state, healed strength erased, backlash play
+//    taken up on the sliding side), is driven by the measured stage motion and simulated with
+//    the Newmark stepper of integrate/dynamics.hpp through the next reversal, stick and
+//    breakaway until the next mid-slide point (at most one forcing period); residual = slider
+//    displacement and force, each divided by the run's RMS of that signal.
+//  Auto: EquationError for the candidates that act while sliding or on the rig; Segments for
+//    backlash, presliding_compliance and stick_healing (scored against a baseline refitted
+//    with Segments), and for everything after one of them is added.
+enum class DynamicsResidual { EquationError, Segments, Auto };
+
 struct IdentifyOptions {
     RateStateParams start;                                        // starting law values (μ, η, …, ε_T fixed unless free)
     std::vector<std::string> freeLaw = {"mu", "C1", "eta", "vc"}; // baseline free law parameters
@@ -63,6 +83,9 @@ struct IdentifyOptions {
     int substeps = 2;                // law steps per sample (prescribed)
     double stickVelocity_mps = 5e-3; // |V| below this counts as stuck (dynamics channel, diagnostics)
     int multistarts = 2;
+    DynamicsResidual dynamicsResidual = DynamicsResidual::Auto;
+    int maxSegmentsPerRun = 12;      // Segments: at most this many segments per run (evenly spread)
+    int segmentSubsteps = 8;         // Segments: Newmark steps per (decimated) sample
     uint64_t seed = 20260611;
     const std::atomic<bool>* cancel = nullptr;
     std::function<void(const std::string& stage, double fraction)> progress;
@@ -97,6 +120,7 @@ struct CandidateScore {
     double heldOutNrmse = -1;   // only computed for the round's best candidate (−1 otherwise)
     std::vector<ParamEstimate> params;
     std::string reason;         // why rejected (empty when accepted)
+    std::string residual = "equation_error";  // dynamics: "equation_error" or "segments"; prescribed: "prescribed"
 };
 
 struct AddedEffect {
@@ -132,6 +156,8 @@ struct IdentifyResult {
     long fits = 0;
     int decimation = 1;       // samples used: every decimation-th
     double slipEpisodes = 0;  // independent units of the BIC (slip episodes in the fit runs)
+    double segmentsUsed = 0;  // dynamics: segments in the fit runs (units of the BIC with the segment residual)
+    std::string residual;     // residual of "before"/"after": "prescribed", "equation_error" or "segments"
 };
 
 IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOptions& options);

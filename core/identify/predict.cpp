@@ -66,10 +66,28 @@ Prediction predictPrescribed(const CleanRun& run, const FrictionLaw& law, double
         pr.message = r.file + ": " + res.message;
         return pr;
     }
+    std::vector<double> Fk(idx.size());
+    for (size_t k = 0; k < idx.size(); ++k) Fk[k] = res.samples[k].force_N;
+    if (s.filterPrediction && !run.filter.empty() && idx.size() > 1) {
+        // Prediction at every measured sample (linear between law step boundaries), minus
+        // the cleaned force, through the cleaning filter; back at the step boundaries.
+        const std::vector<double>& F = r[Signal::Friction];
+        const std::vector<double>& Fu = run.unfilteredForce_N.size() == F.size() ? run.unfilteredForce_N : F;
+        const size_t last = idx.back();
+        std::vector<double> d(last - first + 1);
+        for (size_t k = 0; k + 1 < idx.size(); ++k)
+            for (size_t i = idx[k]; i < idx[k + 1]; ++i) {
+                const double a = static_cast<double>(i - idx[k]) / static_cast<double>(idx[k + 1] - idx[k]);
+                d[i - first] = Fk[k] + a * (Fk[k + 1] - Fk[k]) - Fu[i];
+            }
+        d[last - first] = Fk.back() - Fu[last];
+        d = filtfiltZeroExtended(run.filter, d);
+        for (size_t k = 0; k < idx.size(); ++k) Fk[k] = F[idx[k]] + d[idx[k] - first];
+    }
     for (size_t k = 0; k < idx.size(); ++k)
         if (idx[k] >= run.begin) {
             pr.index.push_back(idx[k]);
-            pr.force_N.push_back(res.samples[k].force_N);
+            pr.force_N.push_back(Fk[k]);
         }
     pr.ok = true;
     return pr;
@@ -91,6 +109,14 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
     m.stage = StageMotion::tabulated(t, r[Signal::StageDisp]);
     const size_t segLen = std::max<size_t>(2, static_cast<size_t>(std::lround(s.segment_s / run.dt_s)));
     const size_t spacing = std::max(segLen, static_cast<size_t>(std::lround(s.segmentSpacing_s / run.dt_s)));
+    const bool filtered = s.filterPrediction && !run.filter.empty();
+    const size_t margin = filtered ? impulseResponseLength(run.filter) : 0;
+    const std::vector<double>& Fm = r[Signal::Friction];
+    const std::vector<double>& Xm = r[Signal::SliderDisp];
+    // Unfiltered measurement (the filter's input) when kept, else the cleaned one.
+    const std::vector<double>& Fu = filtered && run.unfilteredForce_N.size() == Fm.size() ? run.unfilteredForce_N : Fm;
+    const std::vector<double>& Xu = filtered && run.unfilteredSlider_m.size() == Xm.size() ? run.unfilteredSlider_m : Xm;
+    std::vector<double> dF(segLen + 1), dX(segLen + 1);  // prediction − measurement over a segment
     for (size_t s0 = run.begin; s0 + segLen < run.end; s0 += spacing) {
         DynState st;
         st.t = t[s0];
@@ -103,6 +129,8 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
         const double V = r.has(Signal::RelVel) ? r[Signal::RelVel][s0] : 0.0;
         st.law.alpha = std::holds_alternative<RateStateLaw>(law) ? std::get<RateStateLaw>(law).steadyStateAlpha(V) : 0.0;
         st.a = (st.law.force_N - rig.stiffness_N_per_m * st.x - rig.damping_Ns_per_m * st.v) / rig.mass_kg;
+        dF[0] = st.law.force_N - Fu[s0];
+        dX[0] = st.x - Xu[s0];
         for (size_t j = 1; j <= segLen; ++j) {
             const StepReport rep = advanceQuiet(m, st, sub);
             if (rep.status != RunStatus::Ok) {
@@ -110,12 +138,19 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
                 pr.ok = false;
                 return pr;
             }
+            dF[j] = st.law.force_N - Fu[s0 + j];
+            dX[j] = st.x - Xu[s0 + j];
+        }
+        if (filtered) {
+            dF = filtfiltZeroExtended(run.filter, dF, margin);
+            dX = filtfiltZeroExtended(run.filter, dX, margin);
+        }
+        for (size_t j = 1; j <= segLen; ++j)
             if (j % static_cast<size_t>(s.residualStride) == 0) {
                 pr.index.push_back(s0 + j);
-                pr.force_N.push_back(st.law.force_N);
-                pr.slider_m.push_back(st.x);
+                pr.force_N.push_back(Fm[s0 + j] + dF[j]);
+                pr.slider_m.push_back(Xm[s0 + j] + dX[j]);
             }
-        }
     }
     if (pr.index.empty()) {
         pr.message = r.file + ": fit window shorter than one segment";

@@ -27,6 +27,15 @@ struct PredictSettings {
     double segment_s = 0.05;     // length of one re-initialised segment
     double segmentSpacing_s = 0.25;  // start-to-start spacing of segments (≥ segment_s)
     int residualStride = 5;      // samples between residual points inside a segment
+    // Pass the prediction through the run's own cleaning filter (CleanRun::filter) before it is
+    // compared with the cleaned measurement, so that both sides of the residual have seen the
+    // same zero-phase band-stop/low-pass: the returned prediction is filter(y) on the predicted
+    // stretch, y = prediction there and the unfiltered measurement elsewhere, i.e. cleaned +
+    // filter(prediction − unfiltered measurement, zero outside the stretch) (CleanRun keeps the
+    // unfiltered force and slider displacement). Without it the filter's smoothing of
+    // stick–slip corners (and of the rig's stick ringing) is a systematic error the
+    // parameters absorb.
+    bool filterPrediction = true;
     std::vector<std::string> validate() const;
 };
 

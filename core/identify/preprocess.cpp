@@ -138,6 +138,30 @@ std::vector<double> filtfilt(const Sos& sos, const std::vector<double>& x) {
     return std::vector<double>(y.begin() + static_cast<long>(pad), y.begin() + static_cast<long>(pad + n));
 }
 
+size_t impulseResponseLength(const Sos& sos, double tolerance) {
+    if (sos.empty()) return 0;
+    for (size_t n = size_t{1} << 12;; n *= 2) {
+        std::vector<double> imp(n, 0.0);
+        imp[1] = 1.0;  // imp[0] = 0: sosFilter starts in the steady state of a zero input
+        const std::vector<double> h = sosFilter(sos, imp);
+        double peak = 0.0;
+        for (double v : h) peak = std::max(peak, std::abs(v));
+        size_t last = 0;
+        for (size_t i = 0; i < h.size(); ++i)
+            if (std::abs(h[i]) > tolerance * peak) last = i;
+        if (last + 16 < n || n >= (size_t{1} << 20)) return last + 1;
+    }
+}
+
+std::vector<double> filtfiltZeroExtended(const Sos& sos, const std::vector<double>& x, size_t margin) {
+    if (sos.empty() || x.empty()) return x;
+    if (margin == 0) margin = impulseResponseLength(sos);
+    std::vector<double> ext(x.size() + 2 * margin, 0.0);
+    std::copy(x.begin(), x.end(), ext.begin() + static_cast<long>(margin));
+    const std::vector<double> y = filtfilt(sos, ext);
+    return std::vector<double>(y.begin() + static_cast<long>(margin), y.begin() + static_cast<long>(margin + x.size()));
+}
+
 std::vector<double> savitzkyGolay(const std::vector<double>& y, double dt, int h, int order, int deriv) {
     const long n = static_cast<long>(y.size());
     std::vector<double> out(y.size(), 0.0);
@@ -380,6 +404,10 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
         const Sos lp = butterworthLowpass(s.filters.lowPassOrder, s.filters.lowPass_Hz, fs);
         sos.insert(sos.end(), lp.begin(), lp.end());
     }
+    if (!sos.empty()) {
+        c.unfilteredForce_N = r.has(Signal::Friction) ? r[Signal::Friction] : std::vector<double>{};
+        c.unfilteredSlider_m = r.has(Signal::SliderDisp) ? r[Signal::SliderDisp] : std::vector<double>{};
+    }
     if (!sos.empty())
         for (size_t k = 1; k < io::kSignalCount; ++k)
             if (!r.channels[k].empty()) r.channels[k] = filtfilt(sos, r.channels[k]);
@@ -455,6 +483,7 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
     }
     c.begin = b;
     c.end = e;
+    c.filter = sos;
     c.notes.push_back("fit window " + std::to_string(t[b]) + " .. " + std::to_string(t[e - 1]) + " s");
     out = std::move(c);
     return true;

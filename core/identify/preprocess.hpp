@@ -30,6 +30,14 @@ std::vector<double> sosFilter(const Sos& sos, const std::vector<double>& x);
 // Zero-phase filtering: forward, then backward, with odd-reflection padding at both ends
 // (as scipy.signal.sosfiltfilt); the magnitude response is |H|².
 std::vector<double> filtfilt(const Sos& sos, const std::vector<double>& x);
+// Samples after which the causal impulse response of sos stays below `tolerance` of its peak
+// (0 for an empty cascade; at most 2^20).
+size_t impulseResponseLength(const Sos& sos, double tolerance = 1e-6);
+// Zero-phase filtering of x as if it were continued by zeros on both sides (a signal that is
+// non-zero only on a short stretch, e.g. a prediction-minus-measurement over one shooting
+// segment): filtfilt of x padded with `margin` zeros at each end (0: impulseResponseLength),
+// returned on x's samples. Linear in x.
+std::vector<double> filtfiltZeroExtended(const Sos& sos, const std::vector<double>& x, size_t margin = 0);
 
 // Savitzky–Golay: least-squares polynomial of `polyOrder` over 2·halfWindow+1 samples at
 // uniform spacing dt, evaluated for derivative `derivative` (0 smooth, 1 velocity, 2 …)
@@ -103,6 +111,14 @@ struct CleanRun {
     double period_s = 0.0; // dominant drive period (0 if none found)
     bool resampled = false;
     std::vector<std::string> notes;  // what was done, for reports
+    // The zero-phase filter (band-stop and low-pass cascade, applied forward and backward) that
+    // cleaned the measured signals; empty when both were off. Predictions are passed through the
+    // same filter before they are compared with the cleaned signals (predict.hpp).
+    Sos filter;
+    // The measured force and slider displacement before that filter (after resampling), kept
+    // when the filter is on (else empty): the filtered prediction is then exactly
+    // filter(prediction) where predicted and filter(measurement) elsewhere.
+    std::vector<double> unfilteredForce_N, unfilteredSlider_m;
 };
 
 bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& out, std::string* error);

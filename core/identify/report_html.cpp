@@ -101,7 +101,8 @@ std::string renderHtmlReport(const IdentifyResult& r) {
          "<style>body{font-family:sans-serif;max-width:1000px;margin:1em auto;color:#222}"
          "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}"
          "th{background:#f3f3f3}td.l{text-align:left}.warn{color:#a40}</style></head><body>\n";
-    o << "<h1>Missing-effect identification</h1>\n<p>Set-up: " << htmlEscape(r.setup) << ". " << r.fits << " fits, "
+    o << "<h1>Missing-effect identification</h1>\n<p>Set-up: " << htmlEscape(r.setup) << ", residual: "
+      << htmlEscape(r.residual) << ". " << r.fits << " fits, "
       << fmt(r.wallTime_s, "%.1f") << " s.</p>\n";
     o << "<h2>Result</h2><p>Effects added: <b>";
     if (r.effectsAdded.empty()) o << "none";
@@ -110,7 +111,10 @@ std::string renderHtmlReport(const IdentifyResult& r) {
     if (r.unexplained)
         o << "<p class=\"warn\">Unexplained structure remains: " << htmlEscape(r.unexplainedReason) << "</p>\n";
     else
-        o << "<p>The final residual passes the whiteness test (Ljung&ndash;Box p = " << fmt(r.diagnosticsAfter.whiteness.pValue)
+        o << "<p>No unexplained structure: the final residual is white (Ljung&ndash;Box p = "
+          << fmt(r.diagnosticsAfter.whiteness.pValue) << ") or its slowly varying part is small (variance / "
+             "successive-difference noise variance &minus; 1 = "
+          << fmt(r.diagnosticsAfter.whiteness.structureRatio, "%.3f") << " &le; " << Whiteness::kStructureRatioLimit
           << ").</p>\n";
     o << "<table><tr><th></th><th>fit NRMSE</th><th>held-out NRMSE</th></tr>"
       << "<tr><td class=l>before (baseline)</td><td>" << fmt(r.before.fitNrmse) << "</td><td>" << fmt(r.before.validationNrmse)
@@ -154,7 +158,9 @@ std::string renderHtmlReport(const IdentifyResult& r) {
           << (i < r.diagnosticsAfter.correlations.size() ? fmt(r.diagnosticsAfter.correlations[i].correlation, "%.3f") : "")
           << "</td></tr>\n";
     o << "</table><p>Ljung&ndash;Box p before " << fmt(r.diagnosticsBefore.whiteness.pValue) << ", after "
-      << fmt(r.diagnosticsAfter.whiteness.pValue) << ".</p>\n";
+      << fmt(r.diagnosticsAfter.whiteness.pValue) << "; structure ratio before "
+      << fmt(r.diagnosticsBefore.whiteness.structureRatio, "%.3f") << ", after "
+      << fmt(r.diagnosticsAfter.whiteness.structureRatio, "%.3f") << ".</p>\n";
     {
         std::vector<SvgSeries> acf;
         for (const auto* d : {&r.diagnosticsBefore, &r.diagnosticsAfter}) {

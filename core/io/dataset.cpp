@@ -98,6 +98,10 @@ bool ColumnMapping::addColumns(const std::string& spec, std::string* error) {
             if (error) *error = "--columns '" + item + "': unknown signal '" + k + "' (known: " + knownSignals() + ")";
             return false;
         }
+        if (s == Signal::Time && v == kNotMapped) {
+            if (error) *error = "--columns '" + item + "': the time signal must be read from a column";
+            return false;
+        }
         columns[s] = v;
     }
     return true;
@@ -164,6 +168,11 @@ bool loadRun(const std::string& path, const ColumnMapping& mapping, Run& out, Da
     run.comments = table.comments;
     for (const SignalInfo& si : signalTable()) {
         const auto m = mapping.columns.find(si.s);
+        if (m != mapping.columns.end() && (m->second.empty() || m->second == kNotMapped)) {
+            if (si.s != Signal::Time) continue;  // deliberately not read
+            err = DatasetError{path, 0, 0, "the time signal must be read from a column (it cannot be unmapped)"};
+            return false;
+        }
         const std::string col = m != mapping.columns.end() ? m->second : si.column;
         const int j = table.column(col);
         if (j < 0) {

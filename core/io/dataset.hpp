@@ -31,14 +31,18 @@ const char* defaultColumn(Signal s);
 const char* signalUnit(Signal s);  // SI unit as text: "s", "m", "m/s", "N", "m/s^2"
 bool parseSignal(const std::string& key, Signal& out);
 
-// Which column holds which signal and in which unit. Unmapped signals use their default
-// column name (if the file has it); units default to SI.
+// Which column holds which signal and in which unit. Signals not in `columns` use their
+// default column name (if the file has it); a signal mapped to "-" (kNotMapped) or "" is not
+// read at all, even when the file has its default column (time cannot be unmapped). Units
+// default to SI.
+inline constexpr const char* kNotMapped = "-";
 struct ColumnMapping {
-    std::map<Signal, std::string> columns;  // signal -> column name
+    std::map<Signal, std::string> columns;  // signal -> column name, or "-" / "" = not read
     std::map<Signal, double> scaleToSI;     // signal -> factor (e.g. mm: 1e-3)
     std::map<Signal, std::string> unitText; // as given, for reports
 
-    // "friction=Fx" (several may be comma-separated: "friction=Fx,time=t").
+    // "friction=Fx" (several may be comma-separated: "friction=Fx,time=t"); "friction=-"
+    // means "do not read friction".
     bool addColumns(const std::string& spec, std::string* error);
     // "stage_disp=mm" (comma-separated allowed); the unit must have the signal's dimension.
     bool addUnits(const std::string& spec, std::string* error);

@@ -1,6 +1,7 @@
 // Poincaré section, classification, stick threshold and Lyapunov exponent on the model.
 #include <QtTest>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <complex>
@@ -65,6 +66,37 @@ private slots:
         QCOMPARE(stepsPerPeriodFor(p, 0), 10000L);  // default dt = T/10 000 at 3 Hz
         QCOMPARE(stepsPerPeriodFor(p, 123), 123L);
         QCOMPARE(poincareModel(p, 1000).dt_s, T / 1000);
+    }
+    // The motion measures of advanceSampledCycle (max |V| over every step, stuck/slip step
+    // counts) against a brute-force pass over the same steps with the exact stage velocity.
+    void sampledCycleMeasuresMatchBruteForce() {
+        const SimParams p = preset("fig20");  // slips and sticks at A = 1 mm
+        const long n = 3000;                   // > 256: the velocity recurrence is re-anchored
+        const DynamicsModel m = poincareModel(p, n);
+        DynState s = m.initialState(0.0);
+        QVERIFY(detail::settleCycles(m, s, n, 5, {}).status == RunStatus::Ok);
+        DynState ref = s;
+        double vmax = 0;
+        long stuck = 0, steps = 0;
+        for (int c = 0; c < 3; ++c) {  // cycle by cycle, as advanceSampledCycle steps
+            const StepReport r0 = advance(m, ref, n, [&](const DynState& st) {
+                vmax = std::max(vmax, std::abs(m.stage.velocity(st.t) - st.v));
+                stuck += st.stuck ? 1 : 0;
+                ++steps;
+            });
+            QVERIFY(r0.status == RunStatus::Ok);
+        }
+        QVERIFY(stuck > 0 && stuck < steps);
+        PoincareSection sec;
+        long stuckOut = 0;
+        for (int c = 0; c < 3; ++c)
+            QVERIFY(detail::advanceSampledCycle(m, s, n, sec, stuckOut, {}).status == RunStatus::Ok);
+        QCOMPARE(sec.size(), std::size_t(3));
+        QCOMPARE(stuckOut, stuck);
+        QCOMPARE(sec.slipSteps, steps - stuck);
+        QCOMPARE(s.x, ref.x);  // observing does not change the run
+        QVERIFY2(std::abs(sec.maxRelVel_mps - vmax) <= 1e-12 * vmax,
+                 qPrintable(QString("%1 vs %2").arg(sec.maxRelVel_mps, 0, 'g', 17).arg(vmax, 0, 'g', 17)));
     }
     void sectionReportsBadInputAndCancel() {
         SimParams p = preset("default");
@@ -162,6 +194,32 @@ private slots:
         const double before = stateSeparation(s, q, sc);
         QCOMPARE(renormalise(s, q, sc, 1e-7), before);
         QVERIFY(std::abs(stateSeparation(s, q, sc) - 1e-7) < 1e-13);
+    }
+    // The companion trajectory on its own thread: the same exponent, growth and section, bit for bit.
+    void lyapunovCompanionThreadGivesTheSameResult() {
+        const SimParams p = preset("fig20");
+        const long n = 1000;
+        const DynamicsModel m = poincareModel(p, n);
+        DynState s = m.initialState(0.0);
+        QVERIFY(detail::settleCycles(m, s, n, 10, {}).status == RunStatus::Ok);
+        DynState a = s, b = s;
+        PoincareSection sa, sb;
+        const LyapunovResult ra = largestLyapunovFrom(m, a, n, 12, 1e-7, separationScales(p), {}, &sa, false);
+        const LyapunovResult rb = largestLyapunovFrom(m, b, n, 12, 1e-7, separationScales(p), {}, &sb, true);
+        QVERIFY(ra.ok() && rb.ok());
+        QCOMPARE(rb.logGrowth.size(), std::size_t(12));
+        QVERIFY(ra.logGrowth == rb.logGrowth);
+        QCOMPARE(ra.perCycle, rb.perCycle);
+        QVERIFY(sa.slider_m == sb.slider_m && sa.relVel_mps == sb.relVel_mps);
+        QCOMPARE(sa.stickFraction, sb.stickFraction);
+        QCOMPARE(a.x, b.x);
+        // Cancelled from the start: both stop with the same status.
+        std::atomic<bool> cancel{true};
+        RunControl stop;
+        stop.cancel = &cancel;
+        DynState c = s;
+        const LyapunovResult rc = largestLyapunovFrom(m, c, n, 12, 1e-7, separationScales(p), stop, nullptr, true);
+        QVERIFY(rc.status == RunStatus::Cancelled);
     }
     void lyapunovNegativeOnAPeriodOneOrbit() {
         const SimParams p = preset("default");  // A = 1 mm, ε_T = 1e6: period-1

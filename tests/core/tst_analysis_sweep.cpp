@@ -2,6 +2,7 @@
 // determinism across thread counts, progress, cancel, directions and failures.
 #include <QtTest>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <mutex>
@@ -127,6 +128,97 @@ private slots:
         QVERIFY(d.ok());
         QCOMPARE(d.points.front().value, 1.0e-3);
         QCOMPARE(d.points.front().direction, -1);
+    }
+    // Concurrent branches: the down branch starts from rest at the top value (after a lead-in)
+    // so the branches run at once. Same result on one thread or two; the up branch is the
+    // sequential sweep's; the down branch still carries its state and, on this set, ends in the
+    // same classes as the sequential down branch.
+    void concurrentBranchesMatchSequentialOnes() {
+        SweepOptions o = small();
+        o.direction = SweepDirection::Both;
+        const SweepResult seq = bifurcationSweep(fig20(), o);
+        QVERIFY2(seq.ok(), seq.message.c_str());
+        o.concurrentBranches = true;
+        o.threads = 1;
+        const SweepResult c1 = bifurcationSweep(fig20(), o);
+        QVERIFY2(c1.ok(), c1.message.c_str());
+        o.threads = 2;
+        std::mutex m;
+        std::vector<double> progress;
+        RunControl ctl;
+        ctl.progress = [&](double f) { std::lock_guard<std::mutex> lk(m); progress.push_back(f); };
+        const SweepResult c2 = bifurcationSweep(fig20(), o, ctl);
+        QVERIFY2(c2.ok(), c2.message.c_str());
+        QVERIFY(samePoints(c1, c2));
+        QCOMPARE(progress.size(), std::size_t(10));
+        QCOMPARE(*std::max_element(progress.begin(), progress.end()), 1.0);
+        QCOMPARE(c2.points.size(), std::size_t(10));
+        // Layout as the sequential sweep: up ascending, then down descending.
+        for (std::size_t i = 0; i < 10; ++i) {
+            QCOMPARE(c2.points[i].value, seq.points[i].value);
+            QCOMPARE(c2.points[i].direction, seq.points[i].direction);
+        }
+        // The up branch is the sequential one, bit for bit.
+        SweepResult seqUp = seq, cUp = c2;
+        seqUp.points.resize(5);
+        cUp.points.resize(5);
+        QVERIFY(samePoints(seqUp, cUp));
+        // The down branch starts elsewhere (rest + lead-in, not the up branch's end state) ...
+        QVERIFY(c2.points[5].section.slider_m != seq.points[5].section.slider_m);
+        // ... but lands in the same classes, with nearly the same stick fractions.
+        for (std::size_t i = 5; i < 10; ++i) {
+            const auto &a = seq.points[i].classification, &b = c2.points[i].classification;
+            QVERIFY2(a.motion == b.motion && a.period == b.period,
+                     qPrintable(QString("A = %1 mm: %2%3 vs %4%5")
+                                    .arg(seq.points[i].value * 1e3)
+                                    .arg(toString(a.motion)).arg(a.period)
+                                    .arg(toString(b.motion)).arg(b.period)));
+            QVERIFY(std::abs(a.stickFraction - b.stickFraction) < 0.01);
+        }
+        // Each branch carries its state: below the top, the concurrent down branch is neither
+        // the independent (from rest) run nor the up branch at the same value.
+        SweepOptions ind = small();
+        ind.mode = SweepMode::Independent;
+        const SweepResult fromRest = bifurcationSweep(fig20(), ind);
+        QVERIFY(fromRest.ok());
+        bool historyShows = false;
+        for (std::size_t k = 1; k < 5; ++k) {  // value index k from the top, down point 5 + k
+            const SweepPoint& d = c2.points[5 + k];
+            const SweepPoint& u = c2.points[4 - k];
+            QCOMPARE(d.value, u.value);
+            if (d.classification.motion == MotionClass::Stick) continue;
+            QVERIFY(d.section.slider_m != fromRest.points[4 - k].section.slider_m);
+            if (std::abs(d.classification.stickFraction - u.classification.stickFraction) > 0.005) historyShows = true;
+        }
+        QVERIFY(historyShows);
+        // Cancel stops both branches.
+        std::atomic<bool> cancel{true};
+        RunControl stop;
+        stop.cancel = &cancel;
+        const SweepResult cancelled = bifurcationSweep(fig20(), o, stop);
+        QVERIFY(cancelled.status == RunStatus::Cancelled);
+        QVERIFY(cancelled.points.empty());
+        // Only meaningful for both directions: up alone is unchanged.
+        o.direction = SweepDirection::Up;
+        const SweepResult upOnly = bifurcationSweep(fig20(), o);
+        QVERIFY(samePoints(upOnly, seqUp));
+    }
+    // The Lyapunov companion on a second thread (continuation, one branch at a time) gives the
+    // same points as on one thread.
+    void continuationLyapunovIsThreadIndependent() {
+        SweepOptions o = small();
+        o.direction = SweepDirection::Both;
+        o.lyapunov = true;
+        o.threads = 1;
+        const SweepResult r1 = bifurcationSweep(fig20(), o);
+        QVERIFY2(r1.ok(), r1.message.c_str());
+        o.threads = 2;
+        const SweepResult r2 = bifurcationSweep(fig20(), o);
+        QVERIFY2(r2.ok(), r2.message.c_str());
+        QCOMPARE(r2.points.size(), std::size_t(10));
+        QVERIFY(samePoints(r1, r2));
+        QVERIFY(!std::isnan(r2.points[4].lyapunovPerCycle));
+        QVERIFY(r2.points[4].section.size() == std::size_t(6));
     }
     void sweepOfAnotherKeyChangesTheDrive() {
         SweepOptions o = small();

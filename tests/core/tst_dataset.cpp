@@ -78,6 +78,31 @@ private slots:
         QVERIFY(why.find("unknown signal") != std::string::npos);
     }
 
+    void signalMappedToDashIsNotRead() {
+        const std::string d05 = kShared + "/data/synthetic/D05/run_01.csv";
+        Run all, some;
+        DatasetError err;
+        QVERIFY2(loadRun(d05, ColumnMapping{}, all, err), err.what().c_str());
+        QVERIFY(all.has(Signal::Friction) && all.has(Signal::SliderAccel));
+        ColumnMapping m;
+        std::string why;
+        QVERIFY2(m.addColumns("friction=-,slider_accel=-", &why), why.c_str());
+        QVERIFY2(loadRun(d05, m, some, err), err.what().c_str());
+        QVERIFY(!some.has(Signal::Friction) && !some.has(Signal::SliderAccel));
+        QVERIFY(some.has(Signal::SliderDisp));
+        QVERIFY(some[Signal::SliderDisp] == all[Signal::SliderDisp]);
+        // an empty name set directly means the same; time cannot be unmapped
+        ColumnMapping e;
+        e.columns[Signal::Normal] = "";
+        QVERIFY2(loadRun(d05, e, some, err), err.what().c_str());
+        QVERIFY(!some.has(Signal::Normal));
+        QVERIFY(!m.addColumns("time=-", &why));
+        QVERIFY(why.find("time") != std::string::npos);
+        e.columns[Signal::Time] = "";
+        QVERIFY(!loadRun(d05, e, some, err));
+        QVERIFY(err.message.find("time") != std::string::npos);
+    }
+
     void badFilesNameFileLineColumn() {
         const std::string f = writeTemp("h5_bad.csv", "time_s,friction_force_N\n0,1\n0.001,2\n0.002,abc\n");
         Run r;

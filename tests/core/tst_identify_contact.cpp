@@ -13,6 +13,9 @@ void expectFound(const ExtendedModel& truth, unsigned seed, const std::string& n
     auto runs = synth::makeRuns(truth, 2.0, 0.02, seed);
     const IdentifyResult r = identifyEffects(runs, synth::testOptions());
     QVERIFY2(r.ok, r.message.c_str());
+    for (const auto& c : r.candidates)
+        qInfo("%s: dBIC %.2f fit NRMSE %.4f %s", c.name.c_str(), c.deltaBic, c.fitNrmse, c.reason.c_str());
+    qInfo("before fit %.4f held-out %.4f", r.before.fitNrmse, r.before.validationNrmse);
     // Whatever it adds, it never adds an effect other than the one in the data first.
     if (!r.effectsAdded.empty() && knownMiss) QCOMPARE(r.effectsAdded.front().name, name);
     if (knownMiss) QEXPECT_FAIL("", knownMiss, Abort);
@@ -35,20 +38,34 @@ private slots:
     void findsBacklash() {
         auto m = synth::trueModel();
         m.effects.backlash = Backlash{2e-4};
-        expectFound(m, 12, "backlash",
-                    "known miss: a 0.2 mm dead band in this short prescribed data is not added (dBIC not below the margin)");
+        expectFound(m, 12, "backlash");
     }
     void findsPreslidingCompliance() {
         auto m = synth::trueModel();
         m.effects.preslidingCompliance = PreslidingCompliance{2e4};
         expectFound(m, 13, "presliding_compliance");
     }
-    void findsViscousDamping() {
+    // A dashpot c_p = ζ t_N (1 s/m) in parallel with the contact, in the prescribed set-up,
+    // adds c_p V = ζ t_N V to the force. While sliding V is the slip rate, so this is exactly
+    // the law's own η t_N λ̇ with η → η + ζ; in stick V is the tiny elastic rate Ḟ/ε_T. The
+    // data cannot tell the two apart: the effect is not identifiable here (it is in the
+    // dynamics set-up, where ζ damps the rig). What the loop must do: explain the data with
+    // the baseline (η̂ ≈ η + ζ), and add no other effect for it.
+    void viscousDampingIsAbsorbedByEtaPrescribed() {
         auto m = synth::trueModel();
         m.effects.viscousDamping = ViscousDamping{0.5};
-        expectFound(m, 14, "viscous_damping",
-                    "known miss: in the prescribed set-up a parallel dashpot c_p V is nearly the law's own eta t_N V "
-                    "while sliding; the baseline absorbs it into eta");
+        auto runs = synth::makeRuns(m, 2.0, 0.02, 14);
+        const IdentifyResult r = identifyEffects(runs, synth::testOptions());
+        QVERIFY2(r.ok, r.message.c_str());
+        for (const auto& c : r.candidates)
+            qInfo("%s: dBIC %.2f fit NRMSE %.4f", c.name.c_str(), c.deltaBic, c.fitNrmse);
+        if (!r.effectsAdded.empty()) QCOMPARE(r.effectsAdded.front().name, std::string("viscous_damping"));
+        double eta = -1;
+        for (const auto& p : r.baseline)
+            if (p.name == "eta") eta = p.value;
+        qInfo("baseline eta %.4f (law 0.8 + zeta 0.5), fit NRMSE %.4f", eta, r.before.fitNrmse);
+        QVERIFY(std::abs(eta - (0.8 + 0.5)) < 0.15);
+        QVERIFY(r.before.fitNrmse < 0.03);
     }
     void findsSensorInertia() {
         auto m = synth::trueModel();

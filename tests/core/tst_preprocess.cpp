@@ -79,6 +79,40 @@ private slots:
         QVERIFY(lagErr > 10 * worst);
     }
 
+    // A short stretch filtered as if continued by zeros equals the middle of a long zero-padded
+    // filtfilt, is linear, and the impulse response length grows with the band-stop's sharpness.
+    void zeroExtendedFilteringOfAShortStretch() {
+        const double fs = 1000;
+        Sos sos = butterworthBandstop(2, 55, 65, fs);
+        const Sos lp = butterworthLowpass(4, 100, fs);
+        sos.insert(sos.end(), lp.begin(), lp.end());
+        const size_t L = impulseResponseLength(sos);
+        QVERIFY2(L > 50 && L < 5000, qPrintable(QString::number(L)));
+        QVERIFY(impulseResponseLength(lp) < L);
+        QCOMPARE(impulseResponseLength(Sos{}), size_t{0});
+        std::vector<double> x, y;
+        for (int i = 0; i < 51; ++i) {
+            x.push_back(std::sin(0.3 * i) + 0.01 * i * i);
+            y.push_back(std::cos(0.17 * i));
+        }
+        const std::vector<double> fx = filtfiltZeroExtended(sos, x);
+        QCOMPARE(fx.size(), x.size());
+        std::vector<double> longer(20000, 0.0);
+        std::copy(x.begin(), x.end(), longer.begin() + 10000);
+        const std::vector<double> ref = filtfilt(sos, longer);
+        double worst = 0, scale = 0;
+        for (size_t i = 0; i < x.size(); ++i) {
+            worst = std::max(worst, std::abs(fx[i] - ref[10000 + i]));
+            scale = std::max(scale, std::abs(ref[10000 + i]));
+        }
+        QVERIFY2(worst < 1e-5 * scale, qPrintable(QString::number(worst / scale)));
+        std::vector<double> sum(x.size());
+        for (size_t i = 0; i < x.size(); ++i) sum[i] = 2.0 * x[i] - 3.0 * y[i];
+        const std::vector<double> fy = filtfiltZeroExtended(sos, y), fs2 = filtfiltZeroExtended(sos, sum);
+        for (size_t i = 0; i < x.size(); ++i) QVERIFY(std::abs(fs2[i] - (2.0 * fx[i] - 3.0 * fy[i])) < 1e-9 * scale);
+        QVERIFY(filtfiltZeroExtended(Sos{}, x) == x);
+    }
+
     void savitzkyGolayDifferentiates() {
         const double dt = 0.001;
         std::vector<double> cubic, sine;

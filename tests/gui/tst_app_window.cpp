@@ -23,6 +23,7 @@
 #include "simulation_controller.hpp"
 #include "view_set.hpp"
 #include "widgets/friction_loop_plot.hpp"
+#include "widgets/phase_portrait_plot.hpp"
 #include "widgets/time_series_plot.hpp"
 
 using namespace stickslip;
@@ -71,6 +72,8 @@ private slots:
     void cleanupTestCase() { delete w; }
 
     void sliderChangeReachesThePlots() {
+        // A closed view is not redrawn per result (checked below).
+        w->dock("phase")->hide();
         // A: 1 mm → 2.5 mm (position 250 of the 0–10 mm slider).
         w->panel()->slider("A")->setValue(250);
         RunOutcome o;
@@ -95,6 +98,20 @@ private slots:
         QVERIFY(!marks.empty());
         for (const auto& m : marks)
             QVERIFY(m.t0_s >= direct.samples.front().t_s && m.t1_s <= direct.samples.back().t_s && m.t0_s < m.t1_s);
+        // Closed views are not redrawn per result: the phase portrait keeps the update and
+        // shows this run once its dock is shown again.
+        auto* phase = w->views()->phasePortrait();
+        QVERIFY(!phase->isVisible());
+        QVERIFY(phase->hasPendingUpdate());
+        w->dock("phase")->show();
+        QTRY_VERIFY(phase->isVisible());
+        QVERIFY(!phase->hasPendingUpdate());
+        QwtPlotCurve* traj = phase->curve("rate-state: trajectory");
+        QVERIFY(traj);
+        QCOMPARE(traj->dataSize(), direct.samples.size());
+        for (size_t i = 0; i < direct.samples.size(); i += 97)
+            QVERIFY(std::abs(traj->sample(i).x() - 1e3 * direct.samples[i].slider_m) <= 1e-9);
+        w->raiseView("loop");
     }
 
     void presetSwitch() {

@@ -29,7 +29,7 @@ struct EffectInfo {
     std::string name;                    // catalogue name, e.g. "frictional_lag"
     std::string description;             // one paragraph of physics
     std::string signature;               // what it leaves in the residual of a model without it
-    std::vector<EffectParam> params;
+    std::vector<EffectParam> params;     // the first one sets the size of the effect (identify checks it is not on a bound)
     std::vector<std::string> pointers;   // diagnostic signals (names in diagnostics.hpp) that point to it
     EffectSetups setups;
 };
