@@ -20,7 +20,7 @@ namespace {
 
 struct IdentifyCliOptions {
     std::vector<std::string> data, validateOn, columns, units, runSets, candidates;
-    std::string setup, manifest, report, html, free = "mu,C1,eta,vc", dynamicsResidual = "auto";
+    std::string setup, manifest, report, html, free = "mu,C1,eta,vc", dynamicsResidual = "equation-error";
     identify::PreprocessSettings pre;
     bool noBandStop = false, noLowPass = false, noSteadyTrim = false, quiet = false;
     identify::IdentifyOptions id;
@@ -137,7 +137,8 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--substeps", o->id.substeps, "prescribed: law steps per used sample")->capture_default_str();
     cmd->add_option("--multistarts", o->id.multistarts, "starting points per fit")->capture_default_str();
     cmd->add_option("--dynamics-residual", o->dynamicsResidual,
-                    "dynamics set-up: auto, equation-error or segments (re-initialised simulations)")->capture_default_str();
+                    "dynamics set-up: equation-error (default), auto (contact effects scored on re-initialised simulated segments; "
+                    "experimental: it found a backlash the synthetic D05 does not have) or segments")->capture_default_str();
     cmd->add_option("--max-segments", o->id.maxSegmentsPerRun, "segment residual: at most this many segments per run")
         ->capture_default_str();
     cmd->add_option("--seed", o->id.seed, "random seed (the loop is reproducible)")->capture_default_str();

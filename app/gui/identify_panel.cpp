@@ -525,20 +525,26 @@ void IdentifyPanel::onProgress(double fraction, const QString& stage) {
     (fitJob_ ? fitStatus_ : idStatus_)->setText(stage.isEmpty() ? tr("Working…") : stage + QStringLiteral("…"));
 }
 
+bool IdentifyPanel::showJobEnd(const QString& what, bool cancelled, bool ok, const QString& message, double elapsed_ms,
+                               QProgressBar* bar, QLabel* status) {
+    if (cancelled) {
+        bar->setValue(0);
+        status->setText(tr("%1 cancelled after %2 s.").arg(what).arg(elapsed_ms / 1000.0, 0, 'f', 1));
+        emit statusMessage(tr("%1 cancelled").arg(what));
+        return false;
+    }
+    if (!ok) {
+        status->setText(tr("<span style='color:#b00000'>%1 failed: %2</span>").arg(what, message.toHtmlEscaped()));
+        emit statusMessage(tr("%1 failed: %2").arg(what, message));
+        return false;
+    }
+    return true;
+}
+
 void IdentifyPanel::onFitFinished(const FitOutcome& o) {
     setBusy(false, true);
     const double s = o.elapsed_ms / 1000.0;
-    if (o.cancelled) {
-        fitProgress_->setValue(0);
-        fitStatus_->setText(tr("Fit cancelled after %1 s.").arg(s, 0, 'f', 1));
-        emit statusMessage(tr("Fit cancelled"));
-        return;
-    }
-    if (!o.ok) {
-        fitStatus_->setText(tr("<span style='color:#b00000'>Fit failed: %1</span>").arg(o.message.toHtmlEscaped()));
-        emit statusMessage(tr("Fit failed: %1").arg(o.message));
-        return;
-    }
+    if (!showJobEnd(tr("Fit"), o.cancelled, o.ok, o.message, o.elapsed_ms, fitProgress_, fitStatus_)) return;
     lastFit_ = o;
     fitProgress_->setValue(1000);
     QStringList summary;
@@ -779,17 +785,7 @@ void IdentifyPanel::startIdentify() {
 void IdentifyPanel::onIdentifyFinished(const IdentifyOutcome& o) {
     setBusy(false, false);
     const double s = o.elapsed_ms / 1000.0;
-    if (o.cancelled) {
-        idProgress_->setValue(0);
-        idStatus_->setText(tr("Identify cancelled after %1 s.").arg(s, 0, 'f', 1));
-        emit statusMessage(tr("Identify cancelled"));
-        return;
-    }
-    if (!o.ok) {
-        idStatus_->setText(tr("<span style='color:#b00000'>Identify failed: %1</span>").arg(o.message.toHtmlEscaped()));
-        emit statusMessage(tr("Identify failed: %1").arg(o.message));
-        return;
-    }
+    if (!showJobEnd(tr("Identify"), o.cancelled, o.ok, o.message, o.elapsed_ms, idProgress_, idStatus_)) return;
     lastIdentify_ = o;
     const IdentifyResult& r = o.result;
     idProgress_->setValue(1000);

@@ -115,6 +115,9 @@ private:
     void showMapping(int row);
     void setBusy(bool busy, bool fitJob);
     void onProgress(double fraction, const QString& stage);
+    // Shows a cancelled or failed job in its progress bar and status line; true when it succeeded.
+    bool showJobEnd(const QString& what, bool cancelled, bool ok, const QString& message, double elapsed_ms,
+                    QProgressBar* bar, QLabel* status);
     void onFitFinished(const FitOutcome& o);
     void onIdentifyFinished(const IdentifyOutcome& o);
     void refreshPlots();

@@ -271,48 +271,39 @@ JobProgress IdentifyWorker::progressSink(quint64 id) {
     };
 }
 
-quint64 IdentifyWorker::startFit(const FitRequest& request) {
+// Cancels the job in flight, then runs `job(request, cancel, progress)` on the pool and emits
+// `finished` with its outcome on this object's thread, unless a newer job superseded it.
+template <class Request, class Outcome>
+quint64 IdentifyWorker::launch(const Request& request,
+                               Outcome (*job)(const Request&, const std::atomic<bool>*, const JobProgress&),
+                               void (IdentifyWorker::*finished)(const Outcome&)) {
     cancel();
     const quint64 id = ++lastId_;
     auto token = std::make_shared<std::atomic<bool>>(false);
     cancel_ = token;
     busy_ = true;
     JobProgress sink = progressSink(id);
-    QtConcurrent::run(&pool_, [this, request, token, id, sink] {
-        FitOutcome out = runFitJob(request, token.get(), sink);
+    QtConcurrent::run(&pool_, [this, request, token, id, sink, job, finished] {
+        Outcome out = job(request, token.get(), sink);
         out.id = id;
         QMetaObject::invokeMethod(
             this,
-            [this, out = std::move(out)] {
+            [this, out = std::move(out), finished] {
                 if (out.id != lastId_) return;  // superseded
                 busy_ = false;
-                emit fitFinished(out);
+                emit(this->*finished)(out);
             },
             Qt::QueuedConnection);
     });
     return id;
 }
 
+quint64 IdentifyWorker::startFit(const FitRequest& request) {
+    return launch(request, &runFitJob, &IdentifyWorker::fitFinished);
+}
+
 quint64 IdentifyWorker::startIdentify(const IdentifyRequest& request) {
-    cancel();
-    const quint64 id = ++lastId_;
-    auto token = std::make_shared<std::atomic<bool>>(false);
-    cancel_ = token;
-    busy_ = true;
-    JobProgress sink = progressSink(id);
-    QtConcurrent::run(&pool_, [this, request, token, id, sink] {
-        IdentifyOutcome out = runIdentifyJob(request, token.get(), sink);
-        out.id = id;
-        QMetaObject::invokeMethod(
-            this,
-            [this, out = std::move(out)] {
-                if (out.id != lastId_) return;
-                busy_ = false;
-                emit identifyFinished(out);
-            },
-            Qt::QueuedConnection);
-    });
-    return id;
+    return launch(request, &runIdentifyJob, &IdentifyWorker::identifyFinished);
 }
 
 }  // namespace stickslip::gui

@@ -122,6 +122,9 @@ signals:
 
 private:
     JobProgress progressSink(quint64 id);
+    template <class Request, class Outcome>
+    quint64 launch(const Request& request, Outcome (*job)(const Request&, const std::atomic<bool>*, const JobProgress&),
+                   void (IdentifyWorker::*finished)(const Outcome&));
     QThreadPool pool_;
     std::shared_ptr<std::atomic<bool>> cancel_;
     quint64 lastId_ = 0;

@@ -94,13 +94,14 @@ struct NewmarkConstants {
           invPredictor(1.0 / (Keff + epsT)), returnStiffness(epsT * Keff / (Keff + epsT)) {}
 };
 
-// u(t_n) for consecutive steps: exact for tabulated motion; for harmonic motion a rotation
-// recurrence (one multiply-add pair instead of a sin per step), re-anchored to the exact
-// sine every 256 steps so round-off cannot accumulate.
+// u(t_n) and u̇(t_n) for consecutive steps: exact for tabulated motion; for harmonic motion a
+// rotation recurrence on (sin, cos) of the phase (one multiply-add pair instead of a sin and a
+// cos per step), re-anchored to the exact values every 256 steps so round-off cannot accumulate.
 class StageSequence {
 public:
     StageSequence(const StageMotion& m, double t0, double h) : m_(m), t0_(t0), h_(h), harmonic_(m.isHarmonic()) {
         if (harmonic_) {
+            velAmp_ = m.amplitude() * m.omega();
             cr_ = std::cos(m.omega() * h);
             sr_ = std::sin(m.omega() * h);
             anchor(0);
@@ -116,6 +117,10 @@ public:
         s_ = s1;
         return m_.amplitude() * s_;
     }
+    // Stage velocity at the time of the last next() (t0 before the first).
+    double velocity() const {
+        return harmonic_ ? velAmp_ * c_ : m_.velocity(t0_ + static_cast<double>(i_) * h_);
+    }
 
 private:
     void anchor(long i) {
@@ -126,7 +131,7 @@ private:
     const StageMotion& m_;
     double t0_, h_;
     bool harmonic_;
-    double cr_ = 1, sr_ = 0, s_ = 0, c_ = 1;
+    double velAmp_ = 0, cr_ = 1, sr_ = 0, s_ = 0, c_ = 1;
     long i_ = 0;
 };
 
