@@ -12,30 +12,16 @@
 #include <sstream>
 #include <string>
 
+#include "cli_runner.hpp"
+
 using json = nlohmann::json;
 
 namespace {
 
-struct Result {
-    int exitCode = -1;
-    QByteArray out, err;
-};
+using Result = stickslip::testing::CliResult;
 
-Result runCli(const QStringList& args, int timeout_ms = 1200000) {
-    QProcess p;
-    p.start(QStringLiteral(STICKSLIP_CLI), args);
-    Result r;
-    if (!p.waitForFinished(timeout_ms)) {
-        p.kill();
-        p.waitForFinished();
-        r.err = "timed out";
-        return r;
-    }
-    r.exitCode = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
-    r.out = p.readAllStandardOutput();
-    r.err = p.readAllStandardError();
-    return r;
-}
+// Fits take minutes on a loaded machine.
+Result runCli(const QStringList& args) { return stickslip::testing::runCli(args, 1200000); }
 
 QString damper(const char* name) { return QStringLiteral(STICKSLIP_SHARED_DIR "/data/real/friction-damper/") + name; }
 QString d05(const char* name) { return QStringLiteral(STICKSLIP_SHARED_DIR "/data/synthetic/D05/") + name; }

@@ -12,30 +12,15 @@
 #include "core/io/run_csv.hpp"
 #include "core/presets.hpp"
 
+#include "cli_runner.hpp"
+
 using namespace stickslip;
 
 namespace {
 
-struct Result {
-    int exitCode = -1;
-    QByteArray out, err;
-};
+using Result = stickslip::testing::CliResult;
 
-Result runCli(const QStringList& args) {
-    QProcess p;
-    p.start(QStringLiteral(STICKSLIP_CLI), args);
-    Result r;
-    if (!p.waitForFinished(120000)) {
-        p.kill();
-        p.waitForFinished();
-        r.err = "timed out";
-        return r;
-    }
-    r.exitCode = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
-    r.out = p.readAllStandardOutput();
-    r.err = p.readAllStandardError();
-    return r;
-}
+using stickslip::testing::runCli;
 
 void writeText(const QString& path, const std::string& text) {
     std::ofstream f(path.toStdString(), std::ios::binary);
