@@ -78,15 +78,8 @@ void runFit(const FitOptions& o, int& exitCode) {
     };
     if (!clean(fitData, fitRuns) || !clean(valData, valRuns)) return;
     if (o.splitTime > 0.0) {
-        if (!(o.splitTime < 1.0)) return fail("--split-time must be in (0, 1)", kBadArguments);
-        std::vector<CleanRun> f2;
-        for (const CleanRun& c : fitRuns) {
-            auto [a, b] = splitByTime(c, o.splitTime);
-            f2.push_back(std::move(a));
-            b.run.file += "#later";
-            valRuns.push_back(std::move(b));
-        }
-        fitRuns = std::move(f2);
+        const std::string e = holdOutLaterParts(fitRuns, valRuns, o.splitTime);
+        if (!e.empty()) return fail("--split-time: " + e, kBadArguments);
     }
     preJson["runs"] = perRun;
 

@@ -98,18 +98,11 @@ FitOutcome runFitJob(const FitRequest& request, const std::atomic<bool>* cancel,
         return out;
     }
     if (request.splitTime > 0.0) {
-        if (!(request.splitTime < 1.0)) {
-            out.message = QStringLiteral("the time split must be in (0, 1)");
+        const std::string e = holdOutLaterParts(fitRuns, valRuns, request.splitTime);
+        if (!e.empty()) {
+            out.message = QString::fromStdString(e);
             return out;
         }
-        std::vector<CleanRun> f2;
-        for (const CleanRun& c : fitRuns) {
-            auto [a, b] = splitByTime(c, request.splitTime);
-            f2.push_back(std::move(a));
-            b.run.file += "#later";
-            valRuns.push_back(std::move(b));
-        }
-        fitRuns = std::move(f2);
     }
     if (request.laws.empty()) {
         out.message = QStringLiteral("no model chosen");

@@ -185,4 +185,8 @@ RunScore scoreRun(const CleanRun& run, SetupKind setup, const ModelSpec& model, 
 // rest becomes a validation run (same data, later window).
 std::pair<CleanRun, CleanRun> splitByTime(const CleanRun& run, double fraction);
 
+// splitByTime on every fit run: the later parts (file name + "#later") are appended to
+// `validationRuns`. Returns an error message (empty on success); `fraction` must be in (0, 1).
+std::string holdOutLaterParts(std::vector<CleanRun>& fitRuns, std::vector<CleanRun>& validationRuns, double fraction);
+
 }  // namespace stickslip::identify

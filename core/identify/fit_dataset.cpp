@@ -100,6 +100,19 @@ std::pair<CleanRun, CleanRun> splitByTime(const CleanRun& run, double fraction) 
     return {a, b};
 }
 
+std::string holdOutLaterParts(std::vector<CleanRun>& fitRuns, std::vector<CleanRun>& validationRuns, double fraction) {
+    if (!(fraction > 0.0 && fraction < 1.0)) return "the time split must be in (0, 1)";
+    std::vector<CleanRun> earlier;
+    for (const CleanRun& c : fitRuns) {
+        auto [a, b] = splitByTime(c, fraction);
+        earlier.push_back(std::move(a));
+        b.run.file += "#later";
+        validationRuns.push_back(std::move(b));
+    }
+    fitRuns = std::move(earlier);
+    return {};
+}
+
 DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& valRuns, const DatasetFitSettings& st) {
     DatasetFit out;
     out.setup = st.setup;

@@ -148,6 +148,29 @@ private slots:
         QVERIFY(std::abs(double(a.end - a.begin) / double(c.end - c.begin) - 0.7) < 0.01);
     }
 
+    void holdOutLaterPartsMovesEachLaterWindowToValidation() {
+        std::vector<CleanRun> fit = {measuredPrescribed(2e-3, 2.0, 10.0, 4), measuredPrescribed(1e-3, 2.0, 10.0, 5)};
+        const std::vector<CleanRun> original = fit;
+        std::vector<CleanRun> val = {measuredPrescribed(3e-3, 2.0, 10.0, 6)};
+        QVERIFY(holdOutLaterParts(fit, val, 0.6).empty());
+        QCOMPARE(fit.size(), size_t(2));
+        QCOMPARE(val.size(), size_t(3));
+        for (size_t i = 0; i < 2; ++i) {
+            const auto [a, b] = splitByTime(original[i], 0.6);
+            QCOMPARE(fit[i].begin, a.begin);
+            QCOMPARE(fit[i].end, a.end);
+            QCOMPARE(val[i + 1].begin, b.begin);
+            QCOMPARE(val[i + 1].end, b.end);
+            QCOMPARE(val[i + 1].run.file, original[i].run.file + "#later");
+        }
+        // A fraction outside (0, 1) is refused and nothing moves.
+        std::vector<CleanRun> fit2 = original, val2;
+        const std::string e = holdOutLaterParts(fit2, val2, 1.0);
+        QVERIFY(e.find("(0, 1)") != std::string::npos);
+        QCOMPARE(fit2.size(), size_t(2));
+        QVERIFY(val2.empty());
+    }
+
     void unknownParameterIsRefused() {
         const std::vector<CleanRun> runs = {measuredPrescribed(2e-3, 2.0, 10.0, 5)};
         DatasetFitSettings st;
