@@ -5,7 +5,7 @@
 // Target (issue 4): median ≤ 50 ms, p95 ≤ 100 ms.
 // On a loaded machine wall times mean little: every stage is also given in CPU time (the GUI
 // thread's own, and the worker thread's), whose sum is the latency an idle 2-core machine
-// would see (the Poincaré job runs beside the run on the second core).
+// would see (the run records the Poincaré section itself: no second job for this preset).
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QEventLoop>
@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "bench_gui_latency: no first result\n");
         return 1;
     }
-    // Let the start-up jobs (Poincaré section) finish so every change starts from idle.
+    // Let the start-up jobs finish so every change starts from idle.
     while (!w.controller()->isIdle()) QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents);
 
     QSlider* slider = w.panel()->slider("A");   // 0–10 mm; Fig. 20 sits at 1 mm = position 100
@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
         w.repaint();
         guiSide.push_back(gui.nsecsElapsed() / 1e6);
         guiCpu.push_back(threadCpuMs() - g0);
-        // Next change from idle (the Poincaré job of this change may still be running).
+        // Next change from idle (a Poincaré job, when the run cannot record the section).
         while (!w.controller()->isIdle()) QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents);
     }
     std::printf("bench_gui_latency: Fig. 20 preset, 20 cycles, %zu slider changes (offscreen)\n", latency.size());
@@ -144,6 +144,11 @@ int main(int argc, char** argv) {
         };
         std::printf("  per view, forced (update + repaint):\n");
         auto* v = w.views();
+        std::printf("   ");
+        for (const auto& view : v->views())
+            std::printf(" %s:%s", qPrintable(view.id),
+                        !view.widget->isVisible() ? "hidden" : (view.widget->visibleRegion().isEmpty() ? "behind" : "shown"));
+        std::printf("\n");
         timeIt("time series", [&] { v->timeSeries()->setRun(run, T); }, v->timeSeries());
         timeIt("  its replot", [&] { v->timeSeries()->plot()->replot(); }, v->timeSeries());
         timeIt("friction loop", [&] { v->frictionLoop()->setRun(run, T); }, v->frictionLoop());

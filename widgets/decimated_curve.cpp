@@ -111,4 +111,46 @@ void DecimatedCurve::drawLines(QPainter* painter, const QwtScaleMap& xMap, const
     QwtPainter::drawPolyline(painter, poly);
 }
 
+void PiecewiseCurve::setPieces(QVector<QPair<int, int>> pieces) {
+    pieces_ = std::move(pieces);
+    piecewise_ = true;
+}
+
+void PiecewiseCurve::clearPieces() {
+    pieces_.clear();
+    piecewise_ = false;
+}
+
+QVector<QPointF> PiecewiseCurve::pieceSamples(int k) const {
+    QVector<QPointF> out;
+    if (k < 0 || k >= pieces_.size()) return out;
+    const int n = static_cast<int>(dataSize());
+    for (int i = std::max(0, pieces_[k].first); i <= std::min(n - 1, pieces_[k].second); ++i)
+        out.append(sample(static_cast<size_t>(i)));
+    return out;
+}
+
+void PiecewiseCurve::drawLines(QPainter* painter, const QwtScaleMap& xMap, const QwtScaleMap& yMap,
+                               const QRectF& canvasRect, int from, int to) const {
+    if (!piecewise_) {
+        DecimatedCurve::drawLines(painter, xMap, yMap, canvasRect, from, to);
+        return;
+    }
+    int drawn = 0;
+    const bool round = QwtPainter::roundingAlignment(painter);
+    const qreal pw = std::max<qreal>(1.0, painter->pen().widthF());
+    const QRectF clip = canvasRect.adjusted(-pw, -pw, pw, pw);
+    for (const auto& [first, last] : pieces_) {
+        const int a = std::max(first, from), b = std::min(last, to);
+        if (a >= b) continue;   // a single point draws no line
+        QPolygonF poly = reducedPolyline(xMap, yMap, a, b);
+        if (round)
+            for (QPointF& p : poly) p = QPointF(std::round(p.x()), std::round(p.y()));
+        if (testPaintAttribute(ClipPolygons)) poly = QwtClipper::clipPolygonF(clip, poly, false);
+        drawn += poly.size();
+        QwtPainter::drawPolyline(painter, poly);
+    }
+    lastDrawn_ = drawn;
+}
+
 }  // namespace stickslip::widgets

@@ -13,7 +13,9 @@
 
 #include <qwt_plot_curve.h>
 
+#include <QPair>
 #include <QPolygonF>
+#include <QVector>
 
 class QwtScaleMap;
 
@@ -39,9 +41,35 @@ protected:
     void drawLines(QPainter* painter, const QwtScaleMap& xMap, const QwtScaleMap& yMap, const QRectF& canvasRect,
                    int from, int to) const override;
 
+    mutable int lastDrawn_ = 0;
+
 private:
     bool monotonicX_ = false;
-    mutable int lastDrawn_ = 0;
+};
+
+// A DecimatedCurve drawn as separate polylines over chosen index ranges (pieces): many
+// friction-loop excursions in one plot item instead of one curve each. The curve keeps all
+// its samples (export, picking, bounding box); only the pieces are drawn, each reduced as a
+// DecimatedCurve reduces a curve. Without pieces set, the whole curve is drawn.
+class PiecewiseCurve : public DecimatedCurve {
+public:
+    explicit PiecewiseCurve(const QString& title = QString()) : DecimatedCurve(title) {}
+
+    // Closed index ranges [first, last] into the samples, drawn each as one polyline.
+    void setPieces(QVector<QPair<int, int>> pieces);
+    void clearPieces();   // draw the whole curve again
+    bool hasPieces() const { return piecewise_; }
+    const QVector<QPair<int, int>>& pieces() const { return pieces_; }
+    // The samples of piece k.
+    QVector<QPointF> pieceSamples(int k) const;
+
+protected:
+    void drawLines(QPainter* painter, const QwtScaleMap& xMap, const QwtScaleMap& yMap, const QRectF& canvasRect,
+                   int from, int to) const override;
+
+private:
+    QVector<QPair<int, int>> pieces_;
+    bool piecewise_ = false;
 };
 
 }  // namespace stickslip::widgets

@@ -26,81 +26,125 @@ FrictionLoopPlot::FrictionLoopPlot(QWidget* parent) : PlotWidget(parent) {
 
 void FrictionLoopPlot::setRun(const RunResult& run, LawKind law) {
     const int slot = style::slot(law);
-    const QString trajectoryTitle = modelLabel(law) + QStringLiteral(": trajectory");
-    // The trajectory curve (the only one with a legend entry) is kept and refilled: removing
-    // and attaching it re-lays out the legend.
-    QwtPlotCurve* bg = curve(trajectoryTitle);
     const QString prefix = modelLabel(law) + QLatin1Char(':');
+    const QString trajectoryTitle = prefix + QStringLiteral(" trajectory");
+    const QString setTitle[3] = {prefix + QStringLiteral(" loops cw"), prefix + QStringLiteral(" loops ccw"),
+                                 prefix + QStringLiteral(" loops flat")};
+    marks_[slot].clear();
+    const auto& samples = run.samples;
+    // This model's curves are kept and refilled (attaching or removing a legend item re-lays
+    // out the legend); any other curve of the model goes.
+    PiecewiseCurve* bg = nullptr;
+    PiecewiseCurve* sets[3] = {nullptr, nullptr, nullptr};
     for (QwtPlotCurve* c : curves()) {
-        if (c == bg || !c->title().text().startsWith(prefix)) continue;
+        const QString title = c->title().text();
+        if (!title.startsWith(prefix)) continue;
+        auto* pc = dynamic_cast<PiecewiseCurve*>(c);
+        if (pc && title == trajectoryTitle && !samples.empty()) {
+            bg = pc;
+            continue;
+        }
+        bool kept = false;
+        for (int o = 0; o < 3 && pc; ++o) {
+            if (title != setTitle[o]) continue;
+            sets[o] = pc;
+            kept = true;
+        }
+        if (kept) continue;
         c->detach();
         delete c;
     }
-    marks_[slot].clear();
-    const auto& samples = run.samples;
-    if (!samples.empty()) {
-        std::vector<double> t, v, rho;
-        t.reserve(samples.size());
-        v.reserve(samples.size());
-        rho.reserve(samples.size());
-        QVector<QPointF> all;
-        all.reserve(static_cast<int>(samples.size()));
-        for (const Sample& s : samples) {
-            t.push_back(s.t_s);
-            v.push_back(s.relVel_mps);
-            rho.push_back(s.ratio);
-            all.append(QPointF(s.relVel_mps, s.ratio));
+    if (samples.empty()) {
+        for (PiecewiseCurve* c : sets) {
+            if (!c) continue;
+            c->detach();
+            delete c;
         }
-        if (!bg) bg = addCurve(trajectoryTitle, QPen(QColor(190, 190, 190), 0.8, style::modelPenStyle(law)));
-        bg->setSamples(all);
-        bg->setZ(10);
+        updateSummary();
+        rescale();
+        return;
+    }
+    const size_t n = samples.size();
+    std::vector<double> t(n), v(n), rho(n);
+    QVector<QPointF> all(static_cast<int>(n));
+    for (size_t k = 0; k < n; ++k) {
+        t[k] = samples[k].t_s;
+        v[k] = samples[k].relVel_mps;
+        rho[k] = samples[k].ratio;
+        all[static_cast<int>(k)] = QPointF(v[k], rho[k]);
+    }
+    // The complete slip excursions, grouped by orientation: one item per orientation draws its
+    // excursions as separate polylines. The grey trajectory is drawn only where no loop covers
+    // it (stick and reversals; each grey piece shares its end samples with the loops it joins).
+    QVector<QPointF> setPts[3];
+    QVector<QPair<int, int>> setPieces[3], greyPieces;
+    int greyFrom = 0;
+    const FrictionLoops loops = frictionLoops(t, v, rho);
+    const LoopOptions opt;
+    size_t i = 0;
+    for (size_t k = 0; k < loops.signedArea.size(); ++k) {
+        LoopMark m;
+        m.index = static_cast<int>(k);
+        m.sign = loops.sign[k];
+        m.t0_s = loops.start_s[k];
+        m.signedArea = loops.signedArea[k];
+        // The excursion: from its start while V keeps its sign.
+        while (i < n && samples[i].t_s < m.t0_s) ++i;
+        double vmin = INFINITY, vmax = -INFINITY, rmin = INFINITY, rmax = -INFINITY;
+        size_t j = i;
+        for (; j < n && (v[j] > 0 ? 1 : (v[j] < 0 ? -1 : 0)) == m.sign; ++j) {
+            vmin = std::min(vmin, v[j]);
+            vmax = std::max(vmax, v[j]);
+            rmin = std::min(rmin, rho[j]);
+            rmax = std::max(rmax, rho[j]);
+        }
+        m.t1_s = samples[j > i ? j - 1 : i].t_s;
+        // Same degeneracy rule as the core (bounding box of the excursion).
+        const double box = (vmax - vmin) * (rmax - rmin);
+        m.orientation =
+            !(box > 0) || std::abs(m.signedArea) <= opt.degenerateFraction * box ? 0 : (m.signedArea < 0 ? -1 : +1);
+        marks_[slot].push_back(m);
+        if (j > i) {
+            const int o = m.orientation < 0 ? 0 : (m.orientation > 0 ? 1 : 2);
+            const int first = setPts[o].size();
+            setPts[o].append(all.mid(static_cast<int>(i), static_cast<int>(j - i)));
+            setPieces[o].append({first, setPts[o].size() - 1});
+            if (static_cast<int>(i) > greyFrom) greyPieces.append({greyFrom, static_cast<int>(i)});
+            greyFrom = static_cast<int>(j - 1);
+        }
+        i = j;
+    }
+    if (greyFrom < static_cast<int>(n) - 1) greyPieces.append({greyFrom, static_cast<int>(n) - 1});
 
-        const FrictionLoops loops = frictionLoops(t, v, rho);
-        const LoopOptions opt;
-        size_t i = 0;
-        for (size_t k = 0; k < loops.signedArea.size(); ++k) {
-            LoopMark m;
-            m.index = static_cast<int>(k);
-            m.sign = loops.sign[k];
-            m.t0_s = loops.start_s[k];
-            m.signedArea = loops.signedArea[k];
-            // The excursion: from its start while V keeps its sign.
-            while (i < samples.size() && samples[i].t_s < m.t0_s) ++i;
-            QVector<QPointF> pts;
-            double vmin = INFINITY, vmax = -INFINITY, rmin = INFINITY, rmax = -INFINITY;
-            size_t j = i;
-            for (; j < samples.size() && (samples[j].relVel_mps > 0 ? 1 : (samples[j].relVel_mps < 0 ? -1 : 0)) == m.sign;
-                 ++j) {
-                pts.append(QPointF(samples[j].relVel_mps, samples[j].ratio));
-                vmin = std::min(vmin, samples[j].relVel_mps);
-                vmax = std::max(vmax, samples[j].relVel_mps);
-                rmin = std::min(rmin, samples[j].ratio);
-                rmax = std::max(rmax, samples[j].ratio);
+    if (!bg) {
+        bg = new PiecewiseCurve(trajectoryTitle);
+        bg->setRenderHint(QwtPlotItem::RenderAntialiased, true);
+        bg->setZ(10);
+        bg->attach(plot_);
+    }
+    bg->setPen(QPen(QColor(190, 190, 190), 0.8, style::modelPenStyle(law)));
+    bg->setSamples(all);
+    bg->setPieces(greyPieces);
+    const QColor colour[3] = {style::clockwise(), style::counterClockwise(), QColor(120, 120, 120)};
+    for (int o = 0; o < 3; ++o) {
+        if (setPieces[o].isEmpty()) {
+            if (sets[o]) {
+                sets[o]->detach();
+                delete sets[o];
             }
-            m.t1_s = samples[j > i ? j - 1 : i].t_s;
-            i = j;
-            // Same degeneracy rule as the core (bounding box of the excursion).
-            const double box = (vmax - vmin) * (rmax - rmin);
-            m.orientation =
-                !(box > 0) || std::abs(m.signedArea) <= opt.degenerateFraction * box ? 0 : (m.signedArea < 0 ? -1 : +1);
-            marks_[slot].push_back(m);
-            const QString kind = m.orientation < 0 ? QStringLiteral("cw")
-                                                   : (m.orientation > 0 ? QStringLiteral("ccw") : QStringLiteral("flat"));
-            const QColor color = m.orientation < 0 ? style::clockwise()
-                                                   : (m.orientation > 0 ? style::counterClockwise() : QColor(120, 120, 120));
-            // Built detached and without a legend entry, then attached: attaching a legend item and
-            // removing it again re-lays out the legend each time (seconds for ~200 excursions).
-            auto* c = new DecimatedCurve(QStringLiteral("%1: loop %2 %3").arg(modelLabel(law)).arg(k).arg(kind));
-            c->setItemAttribute(QwtPlotItem::Legend, false);
-            c->setPen(QPen(color, style::kModelLineWidth, style::modelPenStyle(law)));
-            c->setRenderHint(QwtPlotItem::RenderAntialiased, true);
-            c->setSamples(pts);
-            c->setZ(20);
-            c->attach(plot_);
+            continue;
         }
-    } else if (bg) {
-        bg->detach();
-        delete bg;
+        if (!sets[o]) {
+            // Built without a legend entry (the summary box names the orientations).
+            sets[o] = new PiecewiseCurve(setTitle[o]);
+            sets[o]->setItemAttribute(QwtPlotItem::Legend, false);
+            sets[o]->setRenderHint(QwtPlotItem::RenderAntialiased, true);
+            sets[o]->setZ(o == 0 ? 21 : 20);   // clockwise on top: not hidden under the others
+            sets[o]->attach(plot_);
+        }
+        sets[o]->setPen(QPen(colour[o], style::kModelLineWidth, style::modelPenStyle(law)));
+        sets[o]->setSamples(setPts[o]);
+        sets[o]->setPieces(setPieces[o]);
     }
     updateSummary();
     rescale();

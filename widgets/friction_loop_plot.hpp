@@ -26,8 +26,10 @@ class FrictionLoopPlot : public PlotWidget {
 public:
     explicit FrictionLoopPlot(QWidget* parent = nullptr);
 
-    // Curves "<model>: trajectory" (grey, everything) and one per complete slip excursion,
-    // "<model>: loop N cw" / "… ccw" / "… flat" (partial first/last excursions are not marked).
+    // Curves "<model>: trajectory" (grey, every sample; drawn where no loop covers it) and,
+    // per orientation, "<model>: loops cw" / "… ccw" / "… flat": the complete slip excursions of
+    // that orientation, one piece each (PiecewiseCurve::pieces, in time order; partial
+    // first/last excursions are not marked).
     void setRun(const RunResult& run, LawKind law = LawKind::RateState);
     // Same; the forcing period is not needed for the excursion loops (kept for symmetry).
     void setRun(const RunResult& run, double /*period_s*/, LawKind law = LawKind::RateState) { setRun(run, law); }

@@ -175,8 +175,10 @@ QwtPlotCurve* PlotWidget::curve(const QString& title) const {
     return nullptr;
 }
 
+bool PlotWidget::isOnScreen() const { return isVisible() && !visibleRegion().isEmpty(); }
+
 void PlotWidget::updateWhenVisible(std::function<void()> update) {
-    if (isVisible()) {
+    if (isOnScreen()) {
         pending_ = nullptr;
         update();
     } else {

@@ -69,10 +69,14 @@ public:
     // A pending update (below) is applied first, so the file shows the newest data.
     bool exportTo(const QString& path, QString* error = nullptr);
 
-    // Hidden views need not redraw on every result: runs `update` now when the widget is
-    // visible, else keeps it (a newer one replaces an older one) and runs it when the widget
-    // is shown, exported or applyPendingUpdate() is called.
+    // Views off the screen need not redraw on every result: runs `update` now when the widget
+    // is on screen (isOnScreen), else keeps it (a newer one replaces an older one) and runs it
+    // when the widget is shown, exported or applyPendingUpdate() is called (the owner of a
+    // tabified dock calls it when the dock's tab is brought to the front).
     void updateWhenVisible(std::function<void()> update);
+    // Visible and not entirely outside its window: a dock tabified behind another one is
+    // visible but moved out of the window by Qt, so it is not on screen.
+    bool isOnScreen() const;
     bool hasPendingUpdate() const { return static_cast<bool>(pending_); }
     void applyPendingUpdate();
 

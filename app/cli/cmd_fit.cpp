@@ -30,7 +30,7 @@ struct FitOptions {
     PreprocessSettings pre;
     bool noBandStop = false, noLowPass = false, noSteadyTrim = false, noFilterPrediction = false;
     PredictSettings predict;
-    int multistarts = 3, maxIterations = 40;
+    int multistarts = 3, maxIterations = 40, agreeingStarts = 2;
     std::string robust = "none";
     double robustScale = 1.0;
     uint64_t seed = 20260101;
@@ -89,6 +89,7 @@ void runFit(const FitOptions& o, int& exitCode) {
     st.predict = o.predict;
     if (o.noFilterPrediction) st.predict.filterPrediction = false;
     st.multistarts = o.multistarts;
+    st.agreeingStarts = o.agreeingStarts;
     st.maxIterations = o.maxIterations;
     st.seed = o.seed;
     st.lossScale = o.robustScale;
@@ -209,7 +210,10 @@ void addFitCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--segment", o->predict.segment_s, "dynamics: shooting segment length [s]")->capture_default_str();
     cmd->add_option("--segment-spacing", o->predict.segmentSpacing_s, "dynamics: segment start spacing [s]")->capture_default_str();
     cmd->add_option("--dt", o->predict.dt_s, "dynamics: integration step [s]")->capture_default_str();
-    cmd->add_option("--multistarts", o->multistarts, "starting points (first = defaults/data estimate)")->capture_default_str();
+    cmd->add_option("--multistarts", o->multistarts, "starting points, at most (first = defaults/data estimate)")->capture_default_str();
+    cmd->add_option("--agreeing-starts", o->agreeingStarts,
+                    "stop the multistart once this many starts ended at the same best cost (0 = run every start)")
+        ->capture_default_str();
     cmd->add_option("--max-iterations", o->maxIterations, "solver iterations per start")->capture_default_str();
     cmd->add_option("--robust", o->robust, "robust loss: none, huber or cauchy")->capture_default_str();
     cmd->add_option("--robust-scale", o->robustScale, "robust loss scale (normalised residual units)")->capture_default_str();

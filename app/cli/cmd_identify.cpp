@@ -133,6 +133,10 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--candidates", o->candidates, "restrict the candidates (catalogue names)")->delimiter(',');
     cmd->add_option("--max-effects", o->id.maxEffects, "at most this many effects")->capture_default_str();
     cmd->add_option("--bic-margin", o->id.bicMargin, "an effect must lower BIC by more than this")->capture_default_str();
+    cmd->add_option("--held-out-alpha", o->id.heldOutAlpha,
+                    "level of the one-sided paired test over held-out runs an effect must pass, in (0, 1)")->capture_default_str();
+    cmd->add_option("--identifiability-alpha", o->id.identifiabilityAlpha,
+                    "level of the size test (effect parameter vs its jackknife s.e.), in (0, 1)")->capture_default_str();
     cmd->add_option("--decimate", o->id.decimate, "use every n-th sample")->capture_default_str();
     cmd->add_option("--substeps", o->id.substeps, "prescribed: law steps per used sample")->capture_default_str();
     cmd->add_option("--multistarts", o->id.multistarts, "starting points per fit")->capture_default_str();

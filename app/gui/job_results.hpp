@@ -19,12 +19,16 @@ struct ModelRun {
     RunResult run;
     std::vector<double> spectrumFreq_Hz, spectrumPsd;  // PSD of the slider displacement x
     std::vector<double> acfLag_s, acf;                 // normalised autocorrelation of x
+    PoincareSection section;   // phase-0 section recorded by the run (RunOutcome::sectionInRun)
 };
 
 struct RunOutcome {
     quint64 generation = 0;
     ModelSettings settings;      // what was run
     std::vector<ModelRun> runs;  // primary law first
+    // The Poincaré section comes with the runs (ModelRun::section; the step divides the
+    // forcing period): no separate Poincaré job for these settings.
+    bool sectionInRun = false;
     double elapsed_ms = 0;       // wall time of the job on the worker
     double cpu_ms = 0;           // CPU time of the job's own thread (the overlaid law's thread not counted)
     bool ok() const;

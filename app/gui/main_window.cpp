@@ -84,6 +84,10 @@ void MainWindow::buildDocks() {
         d->setObjectName("dock_" + v.id);
         d->setWidget(v.widget);
         docks_.insert(v.id, d);
+        // Tabs behind others are not redrawn per result; they catch up when brought to the front.
+        connect(d, &QDockWidget::visibilityChanged, views_, [this, id = v.id](bool visible) {
+            if (visible) views_->viewBroughtToFront(id);
+        });
         if (!first) {
             first = d;
             addDockWidget(Qt::RightDockWidgetArea, d);
@@ -200,7 +204,6 @@ void MainWindow::showMessage(const QString& text, bool failure) {
 }
 
 void MainWindow::onRun(const RunOutcome& o) {
-    lastRun_ = o;
     views_->showRun(o);
     ++runsShown_;
     const QString time = tr("run %1 ms").arg(o.elapsed_ms, 0, 'f', 0);
@@ -314,12 +317,13 @@ void MainWindow::exportView(const QString& viewId) {
 }
 
 void MainWindow::exportRunCsv() {
-    if (lastRun_.runs.empty()) return;
+    const std::shared_ptr<const RunOutcome> last = views_->lastRun();
+    if (!last || last->runs.empty()) return;
     const QString p = QFileDialog::getSaveFileName(this, tr("Export run data"), "run.csv", tr("CSV (*.csv)"));
     if (p.isEmpty()) return;
-    const ModelRun& r = lastRun_.runs.front();
+    const ModelRun& r = last->runs.front();
     std::string why;
-    if (!io::writeRunCsv(p.toStdString(), lastRun_.settings.paramsFor(r.law), r.run, &why))
+    if (!io::writeRunCsv(p.toStdString(), last->settings.paramsFor(r.law), r.run, &why))
         showMessage(tr("Export failed: %1").arg(QString::fromStdString(why)), true);
     else statusBar()->showMessage(tr("Exported %1").arg(p), 4000);
 }

@@ -81,7 +81,6 @@ private:
     QStringList recent_;
     QString sessionPath_;
     QString measuredPath_;
-    RunOutcome lastRun_;
     int runsShown_ = 0;
     bool useSettings_ = true;
 };

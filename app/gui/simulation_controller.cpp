@@ -23,14 +23,14 @@ void analyse(ModelRun& mr, SetupKind setup) {
     if (!(dt > 0.0)) return;
     std::vector<double> x(s.size());
     for (size_t i = 0; i < s.size(); ++i) x[i] = setup == SetupKind::Dynamics ? s[i].slider_m : s[i].ratio;
-    const PowerSpectrum ps = powerSpectrum(x, 1.0 / dt);
+    PowerSpectrum ps = powerSpectrum(x, 1.0 / dt);
     if (ps.ok) {
-        mr.spectrumFreq_Hz = ps.frequency_Hz;
-        mr.spectrumPsd = ps.psd;
+        mr.spectrumFreq_Hz = std::move(ps.frequency_Hz);
+        mr.spectrumPsd = std::move(ps.psd);
     }
-    const Correlation ac = autocorrelation(x, 1.0 / dt, s.size() / 2);
-    mr.acfLag_s = ac.lag_s;
-    mr.acf = ac.r;
+    Correlation ac = autocorrelation(x, 1.0 / dt, s.size() / 2);
+    mr.acfLag_s = std::move(ac.lag_s);
+    mr.acf = std::move(ac.r);
 }
 
 double msSince(const QElapsedTimer& t) { return t.nsecsElapsed() / 1.0e6; }
@@ -89,10 +89,19 @@ bool SimulationController::isIdle() const {
            });
 }
 
+bool SimulationController::sectionFromRun(const ModelSettings& settings) {
+    const SimParams& p = settings.params;
+    return p.setup == SetupKind::Dynamics && stepsPerPeriodDividing(p) > 0 &&
+           p.transientCycles == std::round(p.transientCycles) && p.cycles == std::round(p.cycles) && p.cycles >= 1;
+}
+
 void SimulationController::requestRun(const ModelSettings& settings) {
     pending_ = settings;
     slots_[int(JobKind::Run)].hasPending = true;
-    slots_[int(JobKind::Poincare)].hasPending = poincareEnabled_;
+    // The run brings the section when it can; then a section job of older settings is stale.
+    const bool ownJob = poincareEnabled_ && !sectionFromRun(settings);
+    if (!ownJob) cancel(JobKind::Poincare);
+    slots_[int(JobKind::Poincare)].hasPending = ownJob;
     // Leading edge: a free kind starts now; a busy one cancels its stale job and starts the
     // newest settings when that returns (a drag becomes one job per job duration, no delay).
     fire();
@@ -143,11 +152,14 @@ void SimulationController::launchRun(const ModelSettings& settings) {
         RunOutcome out;
         out.generation = gen;
         out.settings = settings;
+        out.sectionInRun = sectionFromRun(settings);
         const auto laws = settings.laws();
         out.runs.resize(laws.size());
         auto one = [&](size_t i) {
             out.runs[i].law = laws[i];
             out.runs[i].run = simulate(settings.paramsFor(laws[i]), ctl);
+            if (out.sectionInRun)
+                out.runs[i].section = sectionOfRun(out.runs[i].run, settings.params.drive.period());
             analyse(out.runs[i], settings.params.setup);
         };
         if (laws.size() == 2) {

@@ -1,7 +1,8 @@
 // Owns the computations behind the views; the GUI thread never computes.
 //
-// Kinds of job: Run (time series, loops, phase portrait, rig, spectrum, autocorrelation),
-// Poincaré section, bifurcation Sweep, periodicity Map. At most one job of each kind is in
+// Kinds of job: Run (time series, loops, phase portrait, rig, spectrum, autocorrelation and,
+// when the step divides the forcing period, the Poincaré section the run records), Poincaré
+// section (only for the other settings), bifurcation Sweep, periodicity Map. At most one job of each kind is in
 // flight. Parameter changes (Run and Poincaré) are throttled on the leading edge: a change
 // starts its job at once when no job of that kind is in flight; while one is, changes are
 // merged (the newest parameters win), the stale job is cancelled through its own
@@ -31,8 +32,13 @@ public:
     explicit SimulationController(QObject* parent = nullptr);
     ~SimulationController() override;   // cancels every job and waits for it
 
-    // Whether parameter changes also compute the Poincaré section (costly for long runs).
+    // Whether parameter changes also compute the Poincaré section in its own job when the run
+    // cannot record it (costly for long runs).
     void setPoincareEnabled(bool on) { poincareEnabled_ = on; }
+    // The run of these settings records the Poincaré section of the Poincaré view (phase 0,
+    // settle = transient cycles, cycles as recorded): dynamics set-up, the step divides the
+    // forcing period, whole numbers of transient and recorded cycles.
+    static bool sectionFromRun(const ModelSettings& settings);
 
     bool isBusy(JobKind kind) const { return slots_[int(kind)].busy; }
     bool isIdle() const;

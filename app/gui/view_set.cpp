@@ -113,6 +113,16 @@ void ViewSet::showShared(const std::shared_ptr<const RunOutcome>& shared) {
             else acf_->clearModel(law);
         }
     });
+    // The Poincaré section, when the runs recorded it (else the controller's Poincaré job
+    // brings it; the block with prescribed slip has none).
+    if (o.sectionInRun || prescribed) {
+        poincare_->updateWhenVisible([this, shared] {
+            poincare_->clearAll();
+            for (const ModelRun& mr : shared->runs)
+                if (!mr.section.slider_m.empty())
+                    poincare_->setSection(mr.section.slider_m, mr.section.relVel_mps, mr.law);
+        });
+    }
     if (!o.runs.empty() && !o.runs.front().run.samples.empty())
         rig_->setRun(o.runs.front().run, o.settings.paramsFor(o.runs.front().law));
     else
@@ -120,9 +130,16 @@ void ViewSet::showShared(const std::shared_ptr<const RunOutcome>& shared) {
 }
 
 void ViewSet::showPoincare(const PoincareOutcome& o) {
-    poincare_->clearAll();
-    for (const auto& [law, sec] : o.sections)
-        if (!sec.slider_m.empty()) poincare_->setSection(sec.slider_m, sec.relVel_mps, law);
+    auto shared = std::make_shared<const PoincareOutcome>(o);
+    poincare_->updateWhenVisible([this, shared] {
+        poincare_->clearAll();
+        for (const auto& [law, sec] : shared->sections)
+            if (!sec.slider_m.empty()) poincare_->setSection(sec.slider_m, sec.relVel_mps, law);
+    });
+}
+
+void ViewSet::viewBroughtToFront(const QString& id) {
+    if (const View* v = find(id); v && v->plot) v->plot->applyPendingUpdate();
 }
 
 void ViewSet::showSweep(const SweepOutcome& o) {

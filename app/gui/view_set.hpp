@@ -62,6 +62,12 @@ public:
     int overlayMeasured(const io::CsvTable& table, double normalForce_N, QString* error);
     void clearMeasured();
 
+    // The last run outcome shown (nullptr before the first).
+    std::shared_ptr<const RunOutcome> lastRun() const { return lastRun_; }
+    // A view's dock became visible (e.g. its tab was brought to the front): a plot kept off
+    // screen draws the newest result it was handed.
+    void viewBroughtToFront(const QString& id);
+
 public slots:
     void showRun(const stickslip::gui::RunOutcome& outcome);
     void showPoincare(const stickslip::gui::PoincareOutcome& outcome);

@@ -22,27 +22,34 @@ std::size_t nextFastSize(std::size_t n) {
 // zero padding to ≥ n + maxLag (so the circular product equals the linear one on those lags).
 std::vector<double> correlationSums(const std::vector<double>& a, const std::vector<double>& b, std::size_t maxLag) {
     const std::size_t n = a.size();
+    const bool same = &a == &b;   // autocorrelation: one forward transform, conj(A)·A = |A|²
     const std::size_t L = nextFastSize(n + maxLag + 1);
     const std::size_t nf = L / 2 + 1;
     double* ra = fftw_alloc_real(L);
-    double* rb = fftw_alloc_real(L);
+    double* rb = same ? nullptr : fftw_alloc_real(L);
     fftw_complex* A = fftw_alloc_complex(nf);
-    fftw_complex* B = fftw_alloc_complex(nf);
-    fftw_plan pa, pb, pinv;
+    fftw_complex* B = same ? nullptr : fftw_alloc_complex(nf);
+    fftw_plan pa, pb = nullptr, pinv;
     {
         std::lock_guard<std::mutex> lk(detail::fftwPlanMutex());
         pa = fftw_plan_dft_r2c_1d(static_cast<int>(L), ra, A, FFTW_ESTIMATE);
-        pb = fftw_plan_dft_r2c_1d(static_cast<int>(L), rb, B, FFTW_ESTIMATE);
+        if (!same) pb = fftw_plan_dft_r2c_1d(static_cast<int>(L), rb, B, FFTW_ESTIMATE);
         pinv = fftw_plan_dft_c2r_1d(static_cast<int>(L), A, ra, FFTW_ESTIMATE);
     }
     std::fill(ra, ra + L, 0.0);
-    std::fill(rb, rb + L, 0.0);
+    if (!same) std::fill(rb, rb + L, 0.0);
     std::copy(a.begin(), a.end(), ra);
-    std::copy(b.begin(), b.end(), rb);
+    if (!same) std::copy(b.begin(), b.end(), rb);
     fftw_execute(pa);
-    fftw_execute(pb);
+    if (!same) fftw_execute(pb);
     // c(τ) = IFFT(conj(A) · B)(τ)
-    for (std::size_t k = 0; k < nf; ++k) {
+    if (same) {
+        for (std::size_t k = 0; k < nf; ++k) {
+            A[k][0] = A[k][0] * A[k][0] + A[k][1] * A[k][1];
+            A[k][1] = 0.0;
+        }
+    }
+    for (std::size_t k = 0; k < nf && !same; ++k) {
         const double re = A[k][0] * B[k][0] + A[k][1] * B[k][1];
         const double im = A[k][0] * B[k][1] - A[k][1] * B[k][0];
         A[k][0] = re;
@@ -58,13 +65,13 @@ std::vector<double> correlationSums(const std::vector<double>& a, const std::vec
     {
         std::lock_guard<std::mutex> lk(detail::fftwPlanMutex());
         fftw_destroy_plan(pa);
-        fftw_destroy_plan(pb);
+        if (pb) fftw_destroy_plan(pb);
         fftw_destroy_plan(pinv);
     }
     fftw_free(ra);
-    fftw_free(rb);
+    if (rb) fftw_free(rb);
     fftw_free(A);
-    fftw_free(B);
+    if (B) fftw_free(B);
     return out;
 }
 

@@ -121,6 +121,36 @@ PoincareSection poincareSectionFrom(const DynamicsModel& m, DynState& s, long st
     return out;
 }
 
+PoincareSection sectionOfRun(const RunResult& run, double period_s) {
+    PoincareSection out;
+    out.period_s = period_s;
+    if (run.period.stepsPerPeriod <= 0) {
+        out.status = RunStatus::Failed;
+        out.message = "the run recorded no once-per-period states (prescribed set-up, or dt does not divide the "
+                      "forcing period)";
+        return out;
+    }
+    const size_t n = run.period.samples.size();
+    out.t_s.reserve(n);
+    out.slider_m.reserve(n);
+    out.relVel_mps.reserve(n);
+    out.ratio.reserve(n);
+    out.alpha.reserve(n);
+    for (const Sample& s : run.period.samples) {
+        out.t_s.push_back(s.t_s);
+        out.slider_m.push_back(s.slider_m);
+        out.relVel_mps.push_back(s.relVel_mps);
+        out.ratio.push_back(s.ratio);
+        out.alpha.push_back(s.alpha);
+    }
+    out.maxRelVel_mps = run.period.maxRelVel_mps;
+    out.slipSteps = run.stats.steps - run.stats.stuckSteps;
+    finishSection(out, run.stats.stuckSteps);
+    out.status = run.status;
+    out.message = run.message;
+    return out;
+}
+
 PoincareSection poincareSection(const SimParams& p, const PoincareOptions& opt, const RunControl& ctl) {
     ParamIssues issues = p.validate();
     ParamIssues more = opt.validate();

@@ -50,6 +50,13 @@ DynamicsModel poincareModel(const SimParams& p, long stepsPerPeriod);
 // Progress is the fraction of cycles done.
 PoincareSection poincareSection(const SimParams& p, const PoincareOptions& opt, const RunControl& ctl = {});
 
+// The phase-0 section a dynamics run recorded (RunResult::period, when its step divides the
+// period): the same points and motion measures as poincareSection with phase 0,
+// settleCycles = transientCycles and cycles = cycles (both whole numbers), without simulating
+// again. Empty with status Failed and a message when the run recorded no period states;
+// a cancelled or failed run gives what it recorded, with its status and message.
+PoincareSection sectionOfRun(const RunResult& run, double period_s);
+
 // Continue from a prepared model and state (continuation sweeps): discard settleCycles,
 // then sample `cycles` points; `s` is left at the last sample. Assumes the model's dt
 // divides the period into stepsPerPeriod steps and that `s` sits on the section phase.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace stickslip::identify {
@@ -163,6 +164,91 @@ void ljungBox(const std::vector<double>& acf, size_t n, int h, double& Q, double
         if (static_cast<size_t>(k) < n) Q += acf[k] * acf[k] / static_cast<double>(n - k);
     Q *= static_cast<double>(n) * (n + 2.0);
     p = h > 0 ? chiSquareSurvival(Q, h) : 1.0;
+}
+
+// Regularised incomplete beta I_x(a, b) (continued fraction, modified Lentz).
+static double betaCf(double a, double b, double x) {
+    const double tiny = 1e-300;
+    double c = 1.0, d = 1.0 - (a + b) * x / (a + 1.0);
+    if (std::abs(d) < tiny) d = tiny;
+    d = 1.0 / d;
+    double h = d;
+    for (int m = 1; m < 1000; ++m) {
+        const double m2 = 2.0 * m;
+        double aa = m * (b - m) * x / ((a - 1.0 + m2) * (a + m2));
+        d = 1.0 + aa * d; if (std::abs(d) < tiny) d = tiny;
+        c = 1.0 + aa / c; if (std::abs(c) < tiny) c = tiny;
+        d = 1.0 / d;
+        h *= d * c;
+        aa = -(a + m) * (a + b + m) * x / ((a + m2) * (a + 1.0 + m2));
+        d = 1.0 + aa * d; if (std::abs(d) < tiny) d = tiny;
+        c = 1.0 + aa / c; if (std::abs(c) < tiny) c = tiny;
+        d = 1.0 / d;
+        const double del = d * c;
+        h *= del;
+        if (std::abs(del - 1.0) < 1e-15) break;
+    }
+    return h;
+}
+
+static double incompleteBeta(double a, double b, double x) {
+    if (x <= 0) return 0.0;
+    if (x >= 1) return 1.0;
+    const double lbt = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x);
+    if (x < (a + 1.0) / (a + b + 2.0)) return std::exp(lbt) * betaCf(a, b, x) / a;
+    return 1.0 - std::exp(lbt) * betaCf(b, a, 1.0 - x) / b;
+}
+
+double studentTSurvival(double t, double dof) {
+    if (!(dof > 0) || std::isnan(t)) return std::numeric_limits<double>::quiet_NaN();
+    // P(|T| > |t|) = I_{ν/(ν+t²)}(ν/2, 1/2).
+    const double two = incompleteBeta(0.5 * dof, 0.5, dof / (dof + t * t));
+    return t >= 0 ? 0.5 * two : 1.0 - 0.5 * two;
+}
+
+double studentTQuantile(double p, double dof) {
+    if (!(p > 0 && p < 1) || !(dof > 0)) return std::numeric_limits<double>::quiet_NaN();
+    if (p < 0.5) return -studentTQuantile(1.0 - p, dof);
+    double lo = 0.0, hi = 1.0;
+    while (studentTSurvival(hi, dof) > 1.0 - p && hi < 1e12) hi *= 2.0;
+    for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (studentTSurvival(mid, dof) > 1.0 - p ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+PairedTest pairedLogRatioTest(const std::vector<double>& before, const std::vector<double>& after) {
+    PairedTest r;
+    std::vector<double> d;
+    for (size_t i = 0; i < before.size() && i < after.size(); ++i)
+        if (before[i] > 0 && after[i] > 0 && std::isfinite(before[i]) && std::isfinite(after[i]))
+            d.push_back(std::log(before[i] / after[i]));
+    r.units = static_cast<int>(d.size());
+    if (d.size() < 2) {
+        r.t = r.pValue = std::numeric_limits<double>::quiet_NaN();
+        if (d.size() == 1) r.meanLogRatio = d[0];
+        return r;
+    }
+    const double k = static_cast<double>(d.size());
+    const double mean = std::accumulate(d.begin(), d.end(), 0.0) / k;
+    double ss = 0;
+    for (double v : d) ss += (v - mean) * (v - mean);
+    const double se = std::sqrt(ss / (k - 1.0) / k);
+    r.meanLogRatio = mean;
+    r.t = se > 0 ? mean / se : (mean > 0 ? std::numeric_limits<double>::infinity()
+                                         : mean < 0 ? -std::numeric_limits<double>::infinity() : 0.0);
+    r.pValue = std::isinf(r.t) ? (r.t > 0 ? 0.0 : 1.0) : studentTSurvival(r.t, k - 1.0);
+    return r;
+}
+
+double jackknifeStderr(const std::vector<double>& v) {
+    if (v.size() < 2) return std::numeric_limits<double>::quiet_NaN();
+    const double k = static_cast<double>(v.size());
+    const double mean = std::accumulate(v.begin(), v.end(), 0.0) / k;
+    double ss = 0;
+    for (double x : v) ss += (x - mean) * (x - mean);
+    return std::sqrt((k - 1.0) / k * ss);
 }
 
 double integratedAcfTime(const std::vector<double>& acf) {

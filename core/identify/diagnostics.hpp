@@ -83,6 +83,30 @@ double pearson(const std::vector<double>& a, const std::vector<double>& b);
 // Integrated autocorrelation time 1 + 2 Σ ρ_k, summed until ρ_k first drops below 0.05.
 double integratedAcfTime(const std::vector<double>& acf);
 
+// Student's t distribution with `dof` (> 0) degrees of freedom: upper tail P(T > t), and the
+// quantile t_{p,dof} with P(T ≤ t) = p (0 < p < 1). Regularised incomplete beta by continued
+// fraction; the quantile by bisection on the tail. Used by the selection of identify.
+double studentTSurvival(double t, double dof);
+double studentTQuantile(double p, double dof);
+
+// Paired comparison of two models over K independent held-out units (runs): d_i = ln(before_i /
+// after_i) with before/after the held-out mean squared errors of unit i (units with a missing or
+// non-positive value are skipped). The log ratio makes a run's relative improvement the
+// unit, so runs with different error scales weigh alike. One-sided t statistic
+// t = mean(d) / (sd(d)/√K) with K−1 degrees of freedom; p = P(T_{K−1} > t). K < 2: no test
+// (units < 2, t = NaN, p = NaN).
+struct PairedTest {
+    int units = 0;
+    double meanLogRatio = 0;  // mean d (> 0: after is better)
+    double t = 0;
+    double pValue = 1;        // one-sided
+};
+PairedTest pairedLogRatioTest(const std::vector<double>& before, const std::vector<double>& after);
+
+// Jackknife standard error of an estimate from its K leave-one-out values θ_(i):
+// sqrt((K−1)/K Σ (θ_(i) − θ̄)²) (Efron & Tibshirani, ch. 11). NaN when K < 2.
+double jackknifeStderr(const std::vector<double>& leaveOneOut);
+
 // All diagnostics. The residual is decimated by `decimation` (≥ 1) before the whiteness test
 // so that the smoothing of the measurement chain (a 100 Hz low-pass at 1 kHz correlates
 // neighbouring samples) is not mistaken for model structure.

@@ -63,21 +63,135 @@ struct Mapping {
     }
 };
 
-struct ResidualFunctor {
-    const Mapping* map;
-    long* evaluations;
-    bool operator()(double const* const* z, double* out) const {
-        std::vector<double> values = map->allValues(z[0]);
-        std::vector<double> r(map->prob->residualCount, 0.0);
-        ++*evaluations;
-        if (!map->prob->residuals(values, r)) return false;
-        if (r.size() != map->prob->residualCount) return false;
-        for (size_t i = 0; i < r.size(); ++i) {
-            if (!std::isfinite(r[i])) return false;
-            out[i] = r[i];
+// Residual vectors at internal points z, with a small memory of the most recent points.
+// Ceres asks for the same point several times: with bounds, every trust-region step runs an
+// Armijo line search whose (cubic) interpolation evaluates the Jacobian at the trial point;
+// the accepted candidate is then evaluated again, and a successful step evaluates the
+// Jacobian there once more. The callback is deterministic, so a repeated point is served from
+// memory: the same numbers, the solver's path unchanged, about half the evaluations.
+class PointEvaluator {
+public:
+    struct Result {
+        bool ok = false;
+        std::vector<double> r;
+    };
+    using Ptr = std::shared_ptr<const Result>;
+
+    PointEvaluator(const Mapping& map, long& evaluations, size_t capacity)
+        : map_(map), evaluations_(evaluations), capacity_(std::max<size_t>(capacity, 1)) {}
+
+    // Residuals at every point of zs (internal coordinates), computed together (in one batch
+    // call when the problem has one) where not remembered.
+    std::vector<Ptr> evaluate(const std::vector<std::vector<double>>& zs) {
+        std::vector<Ptr> out(zs.size());
+        std::vector<size_t> todo;
+        for (size_t i = 0; i < zs.size(); ++i) {
+            out[i] = find(zs[i]);
+            if (!out[i]) {
+                bool dup = false;  // the same point twice in one request: compute once
+                for (size_t j : todo) dup = dup || zs[j] == zs[i];
+                if (!dup) todo.push_back(i);
+            }
+        }
+        if (!todo.empty()) {
+            const FitProblem& prob = *map_.prob;
+            const size_t m = prob.residualCount;
+            std::vector<std::vector<double>> values(todo.size()), rs(todo.size(), std::vector<double>(m, 0.0));
+            std::vector<char> ok(todo.size(), 0);
+            for (size_t k = 0; k < todo.size(); ++k) values[k] = map_.allValues(zs[todo[k]].data());
+            if (prob.batchResiduals) {
+                prob.batchResiduals(values, rs, ok);
+            } else {
+                for (size_t k = 0; k < todo.size(); ++k) ok[k] = prob.residuals(values[k], rs[k]) ? 1 : 0;
+            }
+            evaluations_ += static_cast<long>(todo.size());
+            for (size_t k = 0; k < todo.size(); ++k) {
+                auto res = std::make_shared<Result>();
+                res->ok = ok.size() == todo.size() && ok[k] != 0 && rs[k].size() == m &&
+                          std::all_of(rs[k].begin(), rs[k].end(), [](double v) { return std::isfinite(v); });
+                if (res->ok) res->r = std::move(rs[k]);
+                remember(zs[todo[k]], res);
+            }
+            for (size_t i = 0; i < zs.size(); ++i)
+                if (!out[i]) out[i] = find(zs[i]);
+        }
+        return out;
+    }
+
+private:
+    Ptr find(const std::vector<double>& z) {
+        for (Entry& e : memory_)
+            if (e.z == z) {
+                e.used = ++clock_;
+                return e.result;
+            }
+        return nullptr;
+    }
+    void remember(const std::vector<double>& z, Ptr r) {
+        if (memory_.size() < capacity_) {
+            memory_.push_back(Entry{z, std::move(r), ++clock_});
+            return;
+        }
+        auto oldest = std::min_element(memory_.begin(), memory_.end(), [](const Entry& a, const Entry& b) { return a.used < b.used; });
+        *oldest = Entry{z, std::move(r), ++clock_};
+    }
+    struct Entry {
+        std::vector<double> z;
+        Ptr result;
+        uint64_t used = 0;
+    };
+    const Mapping& map_;
+    long& evaluations_;
+    size_t capacity_;
+    std::vector<Entry> memory_;
+    uint64_t clock_ = 0;
+};
+
+// The residual block seen by Ceres, with the Jacobian by central differences exactly as
+// ceres::NumericDiff computes it (step δ_j = max(sqrt(ε), relativeStep·|z_j|), column
+// (r(z + δ_j e_j) − r(z − δ_j e_j))·((1/δ_j)/2)), but with the 2p displaced points
+// requested together so that they can be computed in parallel.
+class CentralDifferenceCost : public ceres::CostFunction {
+public:
+    CentralDifferenceCost(PointEvaluator& ev, size_t p, size_t m, double relativeStep)
+        : ev_(ev), p_(p), m_(m), relStep_(relativeStep) {
+        set_num_residuals(static_cast<int>(m));
+        mutable_parameter_block_sizes()->push_back(static_cast<int32_t>(p));
+    }
+    bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+        const std::vector<double> z(parameters[0], parameters[0] + p_);
+        const PointEvaluator::Ptr base = ev_.evaluate({z}).front();
+        if (!base->ok) return false;
+        std::copy(base->r.begin(), base->r.end(), residuals);
+        if (jacobians == nullptr || jacobians[0] == nullptr) return true;
+        const double minStep = std::sqrt(std::numeric_limits<double>::epsilon());
+        std::vector<double> delta(p_);
+        std::vector<std::vector<double>> pts;
+        pts.reserve(2 * p_);
+        for (size_t j = 0; j < p_; ++j) {
+            delta[j] = std::max(minStep, std::abs(z[j]) * relStep_);
+            std::vector<double> zp = z, zm = z;
+            zp[j] = z[j] + delta[j];
+            zm[j] = z[j] - delta[j];
+            pts.push_back(std::move(zp));
+            pts.push_back(std::move(zm));
+        }
+        const std::vector<PointEvaluator::Ptr> rs = ev_.evaluate(pts);
+        double* J = jacobians[0];  // row-major m × p
+        for (size_t j = 0; j < p_; ++j) {
+            const PointEvaluator::Result& rp = *rs[2 * j];
+            const PointEvaluator::Result& rm = *rs[2 * j + 1];
+            if (!rp.ok || !rm.ok) return false;
+            const double scale = (1.0 / delta[j]) / 2;
+            for (size_t i = 0; i < m_; ++i) J[i * p_ + j] = (rp.r[i] - rm.r[i]) * scale;
         }
         return true;
     }
+
+private:
+    PointEvaluator& ev_;
+    size_t p_, m_;
+    double relStep_;
 };
 
 class ControlCallback : public ceres::IterationCallback {
@@ -108,7 +222,7 @@ std::string fmt(double v) {
 
 std::vector<std::string> FitProblem::validate() const {
     std::vector<std::string> issues;
-    if (!residuals) issues.push_back("residual callback is missing");
+    if (!residuals && !batchResiduals) issues.push_back("residual callback is missing");
     if (residualCount == 0) issues.push_back("residualCount = 0 is out of range: must be > 0");
     size_t nFree = 0;
     for (const FitParameter& p : parameters) {
@@ -125,6 +239,8 @@ std::vector<std::string> FitProblem::validate() const {
     if (residualCount > 0 && nFree >= residualCount)
         issues.push_back("residualCount = " + std::to_string(residualCount) + " must exceed the free parameters (" +
                          std::to_string(nFree) + ")");
+    if (agreeingStarts < 0) issues.push_back("agreeingStarts = " + std::to_string(agreeingStarts) + " is out of range: must be >= 0");
+    if (!(sameCostTolerance >= 0.0)) issues.push_back("sameCostTolerance = " + fmt(sameCostTolerance) + " is out of range: must be >= 0");
     if (multistarts < 1) issues.push_back("multistarts = " + std::to_string(multistarts) + " is out of range: must be >= 1");
     if (maxIterations < 1) issues.push_back("maxIterations must be >= 1");
     if (!(relativeStep > 0.0 && relativeStep < 0.1)) issues.push_back("relativeStep = " + fmt(relativeStep) + " must be in (0, 0.1)");
@@ -179,6 +295,8 @@ FitResult fitLeastSquares(const FitProblem& prob) {
     bool cancelled = false;
     std::string lastFailure;
 
+    // Remembers the last few points (a Jacobian's 2p + 1 and a line search's trial points).
+    PointEvaluator evaluator(map, res.residualEvaluations, 4 * p + 4);
     for (int s = 0; s < prob.multistarts && !cancelled; ++s) {
         std::vector<double> z(p);
         for (size_t k = 0; k < p; ++k) {
@@ -188,12 +306,7 @@ FitResult fitLeastSquares(const FitProblem& prob) {
         }
         ceres::Problem::Options po;
         ceres::Problem problem(po);
-        ceres::NumericDiffOptions nd;
-        nd.relative_step_size = prob.relativeStep;
-        auto* cost = new ceres::DynamicNumericDiffCostFunction<ResidualFunctor, ceres::CENTRAL>(
-            new ResidualFunctor{&map, &res.residualEvaluations}, ceres::TAKE_OWNERSHIP, nd);
-        cost->AddParameterBlock(static_cast<int>(p));
-        cost->SetNumResiduals(static_cast<int>(m));
+        auto* cost = new CentralDifferenceCost(evaluator, p, m, prob.relativeStep);
         ceres::LossFunction* loss = nullptr;
         if (prob.loss == LossKind::Huber) loss = new ceres::HuberLoss(prob.lossScale);
         else if (prob.loss == LossKind::Cauchy) loss = new ceres::CauchyLoss(prob.lossScale);
@@ -229,6 +342,18 @@ FitResult fitLeastSquares(const FitProblem& prob) {
             bestSummary = summary;
             res.bestStart = s;
         }
+        // Early stop: enough starts ended at the best cost found so far (none lower).
+        if (prob.agreeingStarts >= 2 && s + 1 < prob.multistarts) {
+            int same = 0;
+            for (double c : res.startCosts)
+                if (std::isfinite(c) && std::abs(c - bestCost) <= prob.sameCostTolerance * std::max(std::abs(bestCost), 1e-300)) ++same;
+            if (same >= prob.agreeingStarts) {
+                res.stoppedEarly = true;
+                perStart << "stopped after " << (s + 1) << " of " << prob.multistarts << " starts: " << same
+                         << " ended at the same cost (within " << fmt(prob.sameCostTolerance) << " relative)\n";
+                break;
+            }
+        }
     }
     res.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (bestZ.empty()) {
@@ -241,37 +366,42 @@ FitResult fitLeastSquares(const FitProblem& prob) {
     res.converged = bestSummary.termination_type == ceres::CONVERGENCE;
     res.solverSummary = bestSummary.BriefReport() + "\n" + perStart.str();
 
-    // Plain residuals and Jacobian (no loss) at the optimum, in internal coordinates.
-    ceres::NumericDiffOptions nd;
-    nd.relative_step_size = prob.relativeStep;
-    ResidualFunctor f{&map, &res.residualEvaluations};
-    std::vector<double> r0(m);
-    const double* zp = bestZ.data();
-    if (!f(&zp, r0.data())) {
+    // Plain residuals and Jacobian (no loss) at the optimum, in internal coordinates: the
+    // 2p displaced points are computed together (in parallel when the problem can).
+    const PointEvaluator::Ptr base = evaluator.evaluate({bestZ}).front();
+    if (!base->ok) {
         res.status = FitStatus::Failed;
         res.message = "model cannot be evaluated at the optimum";
         return res;
     }
-    Eigen::MatrixXd J(m, p);
+    const std::vector<double>& r0 = base->r;
+    std::vector<std::vector<double>> displaced;
+    std::vector<double> hPlus(p), hMinus(p);
     for (size_t k = 0; k < p; ++k) {
-        std::vector<double> zplus = bestZ, zminus = bestZ;
         double h = prob.relativeStep * std::max(std::abs(bestZ[k]), 1e-2);
         // stay inside the box: one-sided when against a bound
         double hp = std::min(h, map.upperZ(k) - bestZ[k]), hm = std::min(h, bestZ[k] - map.lowerZ(k));
         if (hp <= 0 && hm <= 0) { hp = h; hm = 0; }
+        hPlus[k] = hp;
+        hMinus[k] = hm;
+        std::vector<double> zplus = bestZ, zminus = bestZ;
         zplus[k] += hp;
         zminus[k] -= hm;
-        std::vector<double> rp(m), rm(m);
-        const double* zpp = zplus.data();
-        const double* zmp = zminus.data();
-        const bool okp = hp > 0 ? f(&zpp, rp.data()) : (rp = r0, true);
-        const bool okm = hm > 0 ? f(&zmp, rm.data()) : (rm = r0, true);
-        if (!okp || !okm) {
+        displaced.push_back(hp > 0 ? zplus : bestZ);
+        displaced.push_back(hm > 0 ? zminus : bestZ);
+    }
+    const std::vector<PointEvaluator::Ptr> rd = evaluator.evaluate(displaced);
+    Eigen::MatrixXd J(m, p);
+    for (size_t k = 0; k < p; ++k) {
+        const PointEvaluator::Result& rp = *rd[2 * k];
+        const PointEvaluator::Result& rm = *rd[2 * k + 1];
+        if (!rp.ok || !rm.ok) {
             res.status = FitStatus::Failed;
             res.message = "model cannot be evaluated next to the optimum (parameter " + res.freeNames[k] + ")";
             return res;
         }
-        for (size_t i = 0; i < m; ++i) J(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = (rp[i] - rm[i]) / (hp + hm);
+        for (size_t i = 0; i < m; ++i)
+            J(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = (rp.r[i] - rm.r[i]) / (hPlus[k] + hMinus[k]);
     }
     double ss = 0.0;
     for (double v : r0) ss += v * v;

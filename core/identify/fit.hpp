@@ -50,10 +50,18 @@ enum class LossKind { None, Huber, Cauchy };
 // Return false when the model cannot be evaluated there (simulation failure): the solver
 // then treats the point as infeasible and steps back.
 using ResidualFunction = std::function<bool(const std::vector<double>& params, std::vector<double>& residuals)>;
+// Optional: the residuals at several parameter points at once (the 2p points of a numeric
+// Jacobian), for callers that can spread the work over threads. Same contract as
+// ResidualFunction for every point: residuals[i] for params[i] (sized residualCount on entry),
+// ok[i] = 0 where the model cannot be evaluated. The results must not depend on how the work
+// is scheduled.
+using BatchResidualFunction = std::function<void(const std::vector<std::vector<double>>& params,
+                                                 std::vector<std::vector<double>>& residuals, std::vector<char>& ok)>;
 
 struct FitProblem {
     std::vector<FitParameter> parameters;
     ResidualFunction residuals;
+    BatchResidualFunction batchResiduals;  // optional (else `residuals` is called point by point)
     size_t residualCount = 0;
 
     int multistarts = 3;               // starting points: the given values + (multistarts−1) random in the box
@@ -64,6 +72,11 @@ struct FitProblem {
     double functionTolerance = 1e-9;   // relative cost change to stop
     double parameterTolerance = 1e-9;  // relative step (internal scale) to stop
     double relativeStep = 1e-4;        // central-difference step, relative to the internal parameter
+    // Stop the multistart early once `agreeingStarts` starts (≥ 2) have ended at the same cost
+    // within sameCostTolerance (relative) and no start has been lower: further random starts are
+    // then unlikely to find another minimum. 0 = always run all `multistarts` starts.
+    int agreeingStarts = 0;
+    double sameCostTolerance = 1e-6;
     double conditionLimit = 1e10;      // cond(JᵀJ, scaled to unit diagonal) above this: not identifiable
     const std::atomic<bool>* cancel = nullptr;        // polled between solver iterations
     std::function<void(double fraction)> progress;    // 0..1 over all starts
@@ -95,10 +108,11 @@ struct FitResult {
     bool converged = false;                 // best start ended with Ceres CONVERGENCE
     int startsTried = 0;
     int bestStart = -1;                     // index of the start that gave the optimum (0 = given values)
-    std::vector<double> startCosts;         // final cost of every start
+    std::vector<double> startCosts;         // final cost of every start tried
+    bool stoppedEarly = false;              // agreeingStarts starts agreed before all multistarts ran
     std::string solverSummary;              // Ceres BriefReport of the best start (+ one line per start)
     double wallTime_s = 0.0;
-    long residualEvaluations = 0;
+    long residualEvaluations = 0;           // residual vectors computed (repeated points are reused, not counted)
 
     bool ok() const { return status == FitStatus::Ok; }
     double value(const std::string& name) const;   // NaN if no such parameter
@@ -128,12 +142,19 @@ struct DatasetFitSettings {
     bool estimateStart = true;            // μ start from the data (median |F|/t_N while sliding)
     PredictSettings predict;
     int multistarts = 3;
+    // Up to `multistarts` starts: stop once this many have ended at the same best cost (within
+    // 1e-6 relative, FitProblem::agreeingStarts): two independent starts, one from the data
+    // estimate and one random, that reach the same minimum make a third unlikely to find a
+    // lower one. The solver summary (report JSON "solver.summary") says when it stopped early.
+    // 0 = always run all starts.
+    int agreeingStarts = 2;
     LossKind loss = LossKind::None;
     double lossScale = 1.0;
     uint64_t seed = 20260101;
     int maxIterations = 40;
-    // Runs are predicted on this many threads at once (each run on one thread; results do not
-    // depend on it). 0 = std::thread::hardware_concurrency().
+    // Predictions run on this many threads at once: every (parameter point, run) pair is one
+    // task, so a single evaluation spreads its runs and a numeric Jacobian its 2p displaced
+    // points over the threads (results do not depend on it). 0 = hardware_concurrency().
     int threads = 0;
     const std::atomic<bool>* cancel = nullptr;
     std::function<void(double)> progress;

@@ -6,6 +6,7 @@
 // so runs and channels of different size weigh alike and the standard errors (which use the
 // residual variance at the optimum) do not depend on units.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <thread>
@@ -197,38 +198,60 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
     std::vector<size_t> offset(fitRuns.size(), 0);
     for (size_t k = 1; k < fitRuns.size(); ++k)
         offset[k] = offset[k - 1] + layout[k - 1].size() * (st.setup == SetupKind::Dynamics ? 2 : 1);
-    const size_t threads = std::min(fitRuns.size(), st.threads > 0 ? static_cast<size_t>(st.threads)
-                                                                   : std::max<size_t>(1, std::thread::hardware_concurrency()));
-    prob.residuals = [&, offset, threads](const std::vector<double>& vals, std::vector<double>& r) {
-        const ModelSpec m = specFor(vals);
-        // Runs are independent: predicted on `threads` threads (run k on worker k mod threads,
-        // each writing only its own block of r), which gives the same numbers as one thread.
-        std::vector<char> ok(fitRuns.size(), 0);
-        auto work = [&](size_t w) {
-            for (size_t k = w; k < fitRuns.size(); k += threads) {
-                const Prediction p = predictRun(fitRuns[k], st.setup, m, st.predict);
+    const size_t threads = st.threads > 0 ? static_cast<size_t>(st.threads)
+                                          : std::max<size_t>(1, std::thread::hardware_concurrency());
+    // Runs are independent, and so are the points of a numeric Jacobian: every (point, run)
+    // pair is one task, handed out to `threads` workers in turn (each writes only its own block
+    // of its point's residual vector), so the numbers do not depend on the thread count.
+    prob.batchResiduals = [&, offset, threads](const std::vector<std::vector<double>>& points,
+                                               std::vector<std::vector<double>>& rs, std::vector<char>& okOut) {
+        const size_t nRuns = fitRuns.size(), nTasks = points.size() * nRuns;
+        std::vector<ModelSpec> specs;
+        for (const std::vector<double>& v : points) specs.push_back(specFor(v));
+        rs.resize(points.size());
+        for (std::vector<double>& r : rs) r.assign(count, 0.0);
+        std::vector<char> ok(nTasks, 0);
+        std::atomic<size_t> next{0};
+        auto work = [&]() {
+            for (size_t t = next.fetch_add(1); t < nTasks; t = next.fetch_add(1)) {
+                const size_t pt = t / nRuns, k = t % nRuns;
+                const Prediction p = predictRun(fitRuns[k], st.setup, specs[pt], st.predict);
                 if (!p.ok || p.index.size() != layout[k].size()) continue;
                 const std::vector<double>& F = fitRuns[k].run[Signal::Friction];
+                std::vector<double>& r = rs[pt];
                 size_t o = offset[k];
                 for (size_t j = 0; j < p.index.size(); ++j) {
                     r[o++] = (p.force_N[j] - F[p.index[j]]) / normF[k];
                     if (st.setup == SetupKind::Dynamics)
                         r[o++] = (p.slider_m[j] - fitRuns[k].run[Signal::SliderDisp][p.index[j]]) / normX[k];
                 }
-                ok[k] = 1;
+                ok[t] = 1;
             }
         };
-        if (threads <= 1) {
-            work(0);
+        const size_t workers = std::min(threads, nTasks);
+        if (workers <= 1) {
+            work();
         } else {
             std::vector<std::thread> pool;
-            for (size_t w = 1; w < threads; ++w) pool.emplace_back(work, w);
-            work(0);
-            for (std::thread& t : pool) t.join();
+            for (size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+            work();
+            for (std::thread& th : pool) th.join();
         }
-        return count == r.size() && std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
+        okOut.assign(points.size(), 0);
+        for (size_t pt = 0; pt < points.size(); ++pt)
+            okOut[pt] = std::all_of(ok.begin() + static_cast<long>(pt * nRuns), ok.begin() + static_cast<long>((pt + 1) * nRuns),
+                                    [](char c) { return c != 0; });
+    };
+    prob.residuals = [&](const std::vector<double>& vals, std::vector<double>& r) {
+        std::vector<std::vector<double>> rs(1);
+        std::vector<char> ok;
+        prob.batchResiduals({vals}, rs, ok);
+        if (ok.empty() || !ok[0]) return false;
+        r = std::move(rs[0]);
+        return r.size() == count;
     };
     prob.multistarts = st.multistarts;
+    prob.agreeingStarts = st.agreeingStarts;
     prob.loss = st.loss;
     prob.lossScale = st.lossScale;
     prob.seed = st.seed;

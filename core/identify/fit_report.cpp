@@ -64,6 +64,7 @@ nlohmann::json toJson(const DatasetFit& f) {
     j["solver"] = {{"summary", f.fit.solverSummary}, {"converged", f.fit.converged},
                    {"cost", numOrNull(f.fit.cost)},  {"residual_rms", numOrNull(f.fit.rms)},
                    {"residuals", f.fit.residualCount}, {"starts", f.fit.startsTried},
+                   {"stopped_early", f.fit.stoppedEarly},
                    {"best_start", f.fit.bestStart}, {"evaluations", f.fit.residualEvaluations},
                    {"wall_time_s", f.fit.wallTime_s}};
     return j;

@@ -392,8 +392,10 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
 
 // Per-run errors of a fitted model: in-sample for the fit runs, prediction for validation
 // runs; held-out errors by leave-one-run-out (fit runs) when there are no validation runs.
+// `loo` (optional): the parameter values of each leave-one-run-out fit (for the jackknife).
 ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
-                     const std::vector<size_t>& valIdx, long& fits) {
+                     const std::vector<size_t>& valIdx, long& fits,
+                     std::vector<std::map<std::string, double>>* loo = nullptr) {
     ModelErrors me;
     double mass = kNaN;
     const ExtendedModel m = buildModel(cx, spec, full.values, mass);
@@ -429,6 +431,7 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
             for (size_t i : fitIdx) if (i != h) rest.push_back(i);
             const FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, fits);
             if (!f.ok) continue;
+            if (loo) loo->push_back(f.values);
             double mh = kNaN;
             const ExtendedModel mo = buildModel(cx, spec, f.values, mh);
             std::vector<double> r;
@@ -616,6 +619,97 @@ double bic(double ss, double n, double neffCap, int p) {
     return neff * std::log(std::max(ss, 1e-300) / std::max(n, 1.0)) + p * std::log(neff);
 }
 
+// The held-out and identifiability tests of the selection (tests 2 and 3 of the selection rule,
+// IdentifyOptions in identify.hpp).
+// `units`: the runs whose held-out errors are compared (leave-one-run-out: the fit runs;
+// else the validation runs). Fills the candidate's test figures; false with sc.reason set
+// when a test fails.
+constexpr int kMinUnitsForTests = 3;  // runs needed for the paired test and the jackknife (≥ 2 degrees of freedom)
+
+bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fit, const ModelErrors& ref,
+                     const ModelErrors& with, const std::vector<std::map<std::string, double>>& loo,
+                     const std::vector<size_t>& units, double tauInt) {
+    const IdentifyOptions& opt = *cx.opt;
+    // (2) Held-out error, pooled and paired over runs.
+    if (std::isfinite(ref.validationNrmse) && std::isfinite(with.validationNrmse) &&
+        !(with.validationNrmse < ref.validationNrmse)) {
+        sc.reason = "lowers the fit error (dBIC " + std::to_string(sc.deltaBic) + ") but not the held-out error (" +
+                    std::to_string(with.validationNrmse) + " vs " + std::to_string(ref.validationNrmse) + ")";
+        return false;
+    }
+    std::vector<double> b, a;
+    for (size_t i : units) {
+        if (i >= ref.runs.size() || i >= with.runs.size()) continue;
+        b.push_back(ref.runs[i].heldOutNrmse * ref.runs[i].heldOutNrmse);
+        a.push_back(with.runs[i].heldOutNrmse * with.runs[i].heldOutNrmse);
+    }
+    const PairedTest pt = pairedLogRatioTest(b, a);
+    sc.heldOutUnits = pt.units;
+    sc.heldOutMeanLogRatio = pt.meanLogRatio;
+    sc.heldOutT = pt.t;
+    sc.heldOutP = pt.pValue;
+    // With fewer than 3 held-out runs the paired t-test has at most one degree of freedom (the
+    // spread of two log ratios; t_{0.95,1} = 6.31) and no power: every held-out run must then
+    // improve instead (a weaker guard, reported as such).
+    if (pt.units < kMinUnitsForTests) {
+        sc.heldOutP = kNaN;
+        for (size_t k = 0; k < b.size(); ++k)
+            if (b[k] > 0 && a[k] > 0 && !(a[k] < b[k])) {
+                sc.reason = "held-out error lower pooled but not in every one of the " + std::to_string(pt.units) +
+                            " held-out runs (too few runs for a paired test)";
+                return false;
+            }
+    } else if (!(pt.pValue < opt.heldOutAlpha)) {
+        sc.reason = "held-out error lower pooled (" + std::to_string(with.validationNrmse) + " vs " +
+                    std::to_string(ref.validationNrmse) + ") but not consistently over the " + std::to_string(pt.units) +
+                    " held-out runs: paired t = " + std::to_string(pt.t) + ", one-sided p = " + std::to_string(pt.pValue) +
+                    " >= " + std::to_string(opt.heldOutAlpha) + " (mean log MSE ratio " + std::to_string(pt.meanLogRatio) + ")";
+        return false;
+    }
+    // (3) The size parameter differs from the value at which the effect vanishes by more than
+    // t_{K−1, 1−α/2} jackknife standard errors over the leave-one-run-out fits.
+    EffectInfo info;
+    findEffect(sc.name, info);
+    if (info.params.empty()) return true;
+    const EffectParam& q = info.params.front();
+    const std::string key = sc.name + "." + q.name;
+    const bool inverse = std::isinf(q.vanishing);  // e.g. a stiffness: test its compliance 1/k
+    const double none = sc.name == "viscous_damping" ? opt.zetaNominal : (inverse ? 0.0 : q.vanishing);
+    auto size = [&](double v) { return inverse ? 1.0 / v : v; };
+    const double value = fit.values.count(key) ? size(fit.values.at(key)) : kNaN;
+    std::vector<double> jk;
+    for (const auto& m : loo)
+        if (m.count(key)) jk.push_back(size(m.at(key)));
+    double se = kNaN, crit = kNaN;
+    if (jk.size() >= static_cast<size_t>(kMinUnitsForTests)) {
+        se = jackknifeStderr(jk);
+        crit = studentTQuantile(1.0 - 0.5 * opt.identifiabilityAlpha, static_cast<double>(jk.size()) - 1.0);
+        sc.sizeStderrKind = "jackknife over " + std::to_string(jk.size()) + " leave-one-run-out fits";
+    } else {
+        // Fewer than 3 leave-one-run-out fits (validation runs given, or 2 runs): the Jacobian
+        // standard error made honest for autocorrelated residuals (× sqrt(τ_int)), normal quantile.
+        double jse = kNaN;
+        for (const ParamEstimate& p : fit.estimates)
+            if (p.name == key) jse = p.stderr_;
+        if (std::isfinite(jse) && inverse && fit.values.count(key)) jse /= fit.values.at(key) * fit.values.at(key);
+        se = jse * std::sqrt(std::max(tauInt, 1.0));
+        crit = studentTQuantile(1.0 - 0.5 * opt.identifiabilityAlpha, 1e9);
+        sc.sizeStderrKind = "Jacobian x sqrt(tau_int)";
+    }
+    sc.sizeParam = inverse ? "1/" + q.name : q.name;
+    sc.sizeValue = value;
+    sc.sizeNull = none;
+    sc.sizeStderr = se;
+    sc.sizeCritical = crit;
+    if (std::isfinite(value) && std::isfinite(se) && !(std::abs(value - none) > crit * se)) {
+        sc.reason = "lowers the fit and held-out errors but its size " + sc.sizeParam + " = " + std::to_string(value) +
+                    " is not identified: |value - " + std::to_string(none) + "| <= " + std::to_string(crit) + " x " +
+                    std::to_string(se) + " (" + sc.sizeStderrKind + ")";
+        return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOptions& opt) {
@@ -700,6 +794,13 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         }
     }
     res.slipEpisodes = episodes;
+    res.heldOutAlpha = opt.heldOutAlpha;
+    res.identifiabilityAlpha = opt.identifiabilityAlpha;
+    if (!(opt.heldOutAlpha > 0 && opt.heldOutAlpha < 1) || !(opt.identifiabilityAlpha > 0 && opt.identifiabilityAlpha < 1)) {
+        res.message = "heldOutAlpha = " + std::to_string(opt.heldOutAlpha) + ", identifiabilityAlpha = " +
+                      std::to_string(opt.identifiabilityAlpha) + ": both must be in (0, 1)";
+        return res;
+    }
     // Baseline.
     progress("baseline", 0.0);
     Spec spec;
@@ -717,7 +818,9 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
     std::vector<std::vector<double>> predBefore;
     res.diagnosticsBefore = diagnoseModel(cx, spec, cur, &predBefore);
     Diagnostics curDiag = res.diagnosticsBefore;
+    res.tauInt = curDiag.integratedAcfTime;
     double curHeldOut = res.before.validationNrmse;
+    ModelErrors curErrors = res.before;
     // Segments: the independent units are the segments (each one reversal, stick and breakaway).
     double segEpisodes = 0;
     for (size_t i : fitIdx) segEpisodes += static_cast<double>(cx.runs[i].segments.size());
@@ -825,42 +928,52 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         }
         if (tried.empty()) break;
         std::sort(tried.begin(), tried.end(), [](const auto& a, const auto& b) { return a.sc.deltaBic < b.sc.deltaBic; });
-        CandidateScore& best = tried.front().sc;
-        const FitOutcome& bestFit = tried.front().fit;
-        const Spec s2 = tried.front().spec;
-        const bool switching = s2.segments != spec.segments;
-        bool accept = best.deltaBic < -opt.bicMargin;
+        // Selection (the rule at IdentifyOptions in identify.hpp): in order of ΔBIC, the first candidate
+        // that passes all three tests is added; the others are reported with the test they failed.
+        int chosen = -1;
         ModelErrors me, segBaseErrors;
+        bool segBaseErrorsDone = false;
         double heldOutRef = curHeldOut;
-        if (accept) {
-            if (switching) {
-                progress("round " + std::to_string(round) + ": held-out check of the segment baseline", 1.0);
-                segBaseErrors = errorsOf(cx, segSpec, segBase, fitIdx, valIdx, res.fits);
-                heldOutRef = segBaseErrors.validationNrmse;
-            }
-            progress("round " + std::to_string(round) + ": held-out check of " + best.name, 1.0);
-            me = errorsOf(cx, s2, bestFit, fitIdx, valIdx, res.fits);
-            best.heldOutNrmse = me.validationNrmse;
-            if (std::isfinite(heldOutRef) && std::isfinite(me.validationNrmse) && !(me.validationNrmse < heldOutRef)) {
-                accept = false;
-                best.reason = "lowers the fit error (dBIC " + std::to_string(best.deltaBic) + ") but not the held-out error (" +
-                              std::to_string(me.validationNrmse) + " vs " + std::to_string(heldOutRef) + ")";
-            }
-        } else {
-            best.reason = "best candidate of round " + std::to_string(round) + " but dBIC = " + std::to_string(best.deltaBic) +
-                          " is not below -" + std::to_string(opt.bicMargin) + ": improvement within what noise explains";
-        }
-        for (size_t i = 1; i < tried.size(); ++i) {
-            CandidateScore& sc = tried[i].sc;
-            if (sc.deltaBic >= -opt.bicMargin)
-                sc.reason = "dBIC = " + std::to_string(sc.deltaBic) + " is not below -" + std::to_string(opt.bicMargin) +
+        for (size_t ti = 0; ti < tried.size(); ++ti) {
+            CandidateScore& sc = tried[ti].sc;
+            if (!(sc.deltaBic < -opt.bicMargin)) {
+                sc.reason = std::string(ti == 0 ? "best candidate of round " + std::to_string(round) + " but " : "") + "dBIC = " +
+                            std::to_string(sc.deltaBic) + " is not below -" + std::to_string(opt.bicMargin) +
                             ": improvement within what noise explains";
-            else
-                sc.reason = "dBIC = " + std::to_string(sc.deltaBic) + " but " + best.name + " scored better in round " +
+                continue;
+            }
+            if (chosen >= 0) {
+                sc.reason = "dBIC = " + std::to_string(sc.deltaBic) + " but " + tried[chosen].sc.name + " was added in round " +
                             std::to_string(round);
+                continue;
+            }
+            const bool sw = tried[ti].spec.segments != spec.segments;
+            const ModelErrors* ref = &curErrors;
+            if (sw) {
+                if (!segBaseErrorsDone) {
+                    progress("round " + std::to_string(round) + ": held-out check of the segment baseline", 1.0);
+                    segBaseErrors = errorsOf(cx, segSpec, segBase, fitIdx, valIdx, res.fits);
+                    segBaseErrorsDone = true;
+                }
+                ref = &segBaseErrors;
+            }
+            progress("round " + std::to_string(round) + ": held-out check of " + sc.name, 1.0);
+            std::vector<std::map<std::string, double>> loo;
+            ModelErrors e = errorsOf(cx, tried[ti].spec, tried[ti].fit, fitIdx, valIdx, res.fits, &loo);
+            sc.heldOutNrmse = e.validationNrmse;
+            if (!passesSelection(cx, sc, tried[ti].fit, *ref, e, loo, valIdx.empty() ? fitIdx : valIdx,
+                                 curDiag.integratedAcfTime))
+                continue;
+            chosen = static_cast<int>(ti);
+            me = std::move(e);
+            heldOutRef = ref->validationNrmse;
         }
         for (const Tried& t : tried) scores[t.sc.name] = t.sc;
-        if (!accept) break;
+        if (chosen < 0) break;
+        CandidateScore& best = tried[chosen].sc;
+        const FitOutcome& bestFit = tried[chosen].fit;
+        const Spec s2 = tried[chosen].spec;
+        const bool switching = s2.segments != spec.segments;
         best.accepted = true;
         scores[best.name] = best;
         if (switching) {
@@ -888,6 +1001,7 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         cur = bestFit;
         curHeldOut = me.validationNrmse;
         res.after = me;
+        curErrors = me;
         curDiag = diagnoseModel(cx, spec, cur, nullptr);
     }
     for (const std::string& c : cands)
@@ -1011,6 +1125,18 @@ nlohmann::json toJson(const IdentifyResult& r) {
                          {"score", {{"delta_bic", num(c.deltaBic)}, {"fit_nrmse", num(c.fitNrmse)},
                                     {"held_out_nrmse", c.heldOutNrmse >= 0 ? num(c.heldOutNrmse) : nlohmann::json(nullptr)}}},
                          {"residual", c.residual},
+                         {"held_out_test", c.heldOutUnits == 0 ? nlohmann::json(nullptr)
+                                                               : nlohmann::json{{"runs", c.heldOutUnits},
+                                                                                {"mean_log_mse_ratio", num(c.heldOutMeanLogRatio)},
+                                                                                {"t", num(c.heldOutT)},
+                                                                                {"p_one_sided", num(c.heldOutP)}}},
+                         {"size_test", c.sizeParam.empty() ? nlohmann::json(nullptr)
+                                                           : nlohmann::json{{"parameter", c.sizeParam},
+                                                                            {"value", num(c.sizeValue)},
+                                                                            {"vanishes_at", num(c.sizeNull)},
+                                                                            {"stderr", num(c.sizeStderr)},
+                                                                            {"stderr_kind", c.sizeStderrKind},
+                                                                            {"critical_t", num(c.sizeCritical)}}},
                          {"parameters", toJson(c.params)},
                          {"rejected_because", c.accepted ? nlohmann::json(nullptr) : nlohmann::json(c.reason)}});
     j["candidates"] = cands;
@@ -1018,7 +1144,12 @@ nlohmann::json toJson(const IdentifyResult& r) {
     j["unexplained"] = r.unexplained;
     if (r.unexplained) j["unexplained_reason"] = r.unexplainedReason;
     j["selection"] = {{"criterion", "BIC with n_eff = min(n / tau_int, slip episodes); an effect must lower it by more than "
-                                    "the margin AND lower the held-out NRMSE (leave-one-run-out, or the --validate-on runs)"},
+                                    "the margin AND lower the held-out NRMSE (leave-one-run-out, or the --validate-on runs) "
+                                    "consistently over the held-out runs (one-sided paired t-test on ln MSE ratios, p < alpha) "
+                                    "AND its size parameter must differ from its vanishing value by more than t_(K-1,1-alpha/2) "
+                                    "jackknife standard errors over the leave-one-run-out fits"},
+                      {"held_out_alpha", num(r.heldOutAlpha)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
+                      {"tau_int_samples", num(r.tauInt)},
                       {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation},
                       {"residual", r.residual}, {"segments", r.segmentsUsed}};
     j["wall_time_s"] = r.wallTime_s;

@@ -1,9 +1,9 @@
 // Closing the loop (issue 6): residual → missing effect → extended model → error before and
 // after. Fit the baseline law, diagnose the residual, fit every catalogue effect on top of the
 // current model, add the one that lowers the penalised error most (BIC with the effective
-// number of independent residuals) if it also lowers the held-out error, and repeat until
-// nothing helps (BIC counts slip episodes, not samples, as independent). Never claims
-// an effect it did not find; reports remaining structure.
+// number of independent residuals) if it also lowers the held-out error consistently over the
+// held-out runs and its size is identified (IdentifyOptions: selection rule), and repeat until
+// nothing helps. Never claims an effect it did not find; reports remaining structure.
 //
 // Residuals. Prescribed set-up (Fig. 15a): the extended law is run along the measured slip
 // history (simulateExtendedPrescribed); residual = predicted − measured force, all samples.
@@ -80,7 +80,29 @@ struct IdentifyOptions {
     double zetaNominal = 0.005;                                   // dynamics: ζ of the baseline rig ("very small")
     std::vector<std::string> candidates;                          // empty: the whole catalogue
     int maxEffects = 3;
+    // Selection rule (an effect is added only if it passes all three, in this order):
+    //  (1) penalised fit: ΔBIC < −bicMargin, BIC with n_eff = min(n/τ_int, slip episodes)
+    //      ("very strong" evidence, Kass & Raftery 1995). Ranks the candidates.
+    //  (2) held-out error: lower pooled AND lower consistently over the held-out runs: one-sided
+    //      paired t-test on d_i = ln(MSE_i before / MSE_i after) over the K held-out runs
+    //      (leave-one-run-out, or the validation runs), p < heldOutAlpha with K−1 degrees of
+    //      freedom. Runs are the independent units of the data (separate recordings); the
+    //      samples within a run are not, and a model error that is structured (not noise)
+    //      is what (1) cannot tell from an effect: its gain is real in-sample for any
+    //      n_eff. The paired test asks whether the gain carries over to unseen runs beyond the
+    //      run-to-run scatter of the gain.
+    //  (3) identifiability: the effect's size parameter (params[0]) differs from the value at
+    //      which the effect vanishes by more than t_{K−1, 1−α/2} (α = identifiabilityAlpha)
+    //      jackknife standard errors over the K leave-one-run-out fits (Jacobian stderr ×
+    //      sqrt(τ_int) and the normal quantile when there are no such fits). An effect of the
+    //      specimen has one value for all runs; a term that absorbs a model error of the residual
+    //      channel takes values that depend on which runs it is fitted to.
+    //  With fewer than 3 held-out runs (≤ 1 degree of freedom, no power) (2) requires every
+    //  held-out run to improve and (3) uses the Jacobian stderr × sqrt(τ_int): weaker guards.
+    //  Both α are the conventional 5 % and not tuned to data.
     double bicMargin = 10.0;         // ΔBIC must be below −this ("very strong" evidence, Kass & Raftery)
+    double heldOutAlpha = 0.05;      // (2) one-sided level of the paired held-out test
+    double identifiabilityAlpha = 0.05;  // (3) two-sided level of the size test
     int decimate = 0;                // use every n-th sample in the fits; 0: auto (prescribed ≥ 128
                                      // samples per forcing period, dynamics ≈ 250 Hz)
     int substeps = 2;                // law steps per sample (prescribed)
@@ -123,6 +145,14 @@ struct CandidateScore {
     double heldOutNrmse = -1;   // only computed for the round's best candidate (−1 otherwise)
     std::vector<ParamEstimate> params;
     std::string reason;         // why rejected (empty when accepted)
+    // Selection tests (2) and (3), when the candidate reached them (heldOutUnits 0 otherwise).
+    int heldOutUnits = 0;              // held-out runs in the paired test
+    double heldOutMeanLogRatio = 0;    // mean ln(MSE before / MSE after) over them
+    double heldOutT = kNoTest, heldOutP = kNoTest;  // paired t statistic, one-sided p
+    std::string sizeParam;             // size parameter tested ("1/kt_N_per_m" for a stiffness)
+    double sizeValue = kNoTest, sizeNull = kNoTest, sizeStderr = kNoTest, sizeCritical = kNoTest;
+    std::string sizeStderrKind;        // "jackknife over K leave-one-run-out fits" or "Jacobian x sqrt(tau_int)"
+    static constexpr double kNoTest = -1.0;
     std::string residual = "equation_error";  // dynamics: "equation_error" or "segments"; prescribed: "prescribed"
 };
 
@@ -159,6 +189,8 @@ struct IdentifyResult {
     long fits = 0;
     int decimation = 1;       // samples used: every decimation-th
     double slipEpisodes = 0;  // independent units of the BIC (slip episodes in the fit runs)
+    double tauInt = 1;        // τ_int of the baseline's residual (samples); n_eff = min(n/τ_int, slipEpisodes)
+    double heldOutAlpha = 0.05, identifiabilityAlpha = 0.05;  // the levels used (IdentifyOptions)
     double segmentsUsed = 0;  // dynamics: segments in the fit runs (units of the BIC with the segment residual)
     std::string residual;     // residual of "before"/"after": "prescribed", "equation_error" or "segments"
 };

@@ -122,24 +122,64 @@ std::vector<double> sosFilter(const Sos& sos, const std::vector<double>& x) {
     return y;
 }
 
-std::vector<double> filtfilt(const Sos& sos, const std::vector<double>& x) {
-    const size_t n = x.size();
-    if (sos.empty() || n < 2) return x;
-    const size_t pad = std::min(n - 1, static_cast<size_t>(3 * (2 * sos.size() + 1)));
-    std::vector<double> ext;
-    ext.reserve(n + 2 * pad);
-    for (size_t i = pad; i >= 1; --i) ext.push_back(2.0 * x[0] - x[i]);  // odd reflection
-    ext.insert(ext.end(), x.begin(), x.end());
-    for (size_t i = 1; i <= pad; ++i) ext.push_back(2.0 * x[n - 1] - x[n - 1 - i]);
-    std::vector<double> y = sosFilter(sos, ext);
-    std::reverse(y.begin(), y.end());
-    y = sosFilter(sos, y);
-    std::reverse(y.begin(), y.end());
-    return std::vector<double>(y.begin() + static_cast<long>(pad), y.begin() + static_cast<long>(pad + n));
+namespace {
+
+// The cascade of sosFilter applied in place to x[0..n), forward or backward (backward = sosFilter
+// of the reversed sequence, reversed back). Every section sees the same inputs and does the same
+// operations as in sosFilter (same numbers), but the sections are advanced together sample by
+// sample, so that their recursions overlap in the processor instead of running one after another.
+void sosFilterInPlace(const Sos& sos, double* x, size_t n, bool backward) {
+    const size_t ns = sos.size();
+    if (n == 0 || ns == 0) return;
+    std::vector<double> z(2 * ns);  // z1, z2 of every section
+    double* const z1 = z.data();
+    double* const z2 = z.data() + ns;
+    auto run = [&](auto index) {
+        // Sample 0: each section starts in the steady state of its own first input.
+        double v = x[index(0)];
+        for (size_t s = 0; s < ns; ++s) {
+            const Biquad& q = sos[s];
+            const double in0 = v;
+            const double G = (q.b0 + q.b1 + q.b2) / (1.0 + q.a1 + q.a2);
+            z1[s] = G * in0 - q.b0 * in0;
+            z2[s] = q.b2 * in0 - q.a2 * G * in0;
+            const double out = q.b0 * in0 + z1[s];
+            z1[s] = q.b1 * in0 - q.a1 * out + z2[s];
+            z2[s] = q.b2 * in0 - q.a2 * out;
+            v = out;
+        }
+        x[index(0)] = v;
+        for (size_t k = 1; k < n; ++k) {
+            double in = x[index(k)];
+            for (size_t s = 0; s < ns; ++s) {
+                const Biquad& q = sos[s];
+                const double out = q.b0 * in + z1[s];
+                z1[s] = q.b1 * in - q.a1 * out + z2[s];
+                z2[s] = q.b2 * in - q.a2 * out;
+                in = out;
+            }
+            x[index(k)] = in;
+        }
+    };
+    if (backward) run([n](size_t k) { return n - 1 - k; });
+    else run([](size_t k) { return k; });
 }
 
-size_t impulseResponseLength(const Sos& sos, double tolerance) {
-    if (sos.empty()) return 0;
+size_t reflectionPad(const Sos& sos, size_t n) { return std::min(n - 1, static_cast<size_t>(3 * (2 * sos.size() + 1))); }
+
+// Zero-phase filtering of buf[pad, pad + n) in place, buf having `pad` free samples at each end
+// that receive the odd reflections (as scipy.signal.sosfiltfilt).
+void filtfiltPadded(const Sos& sos, std::vector<double>& buf, size_t pad, size_t n) {
+    const double first = buf[pad], last = buf[pad + n - 1];
+    for (size_t i = 1; i <= pad; ++i) {
+        buf[pad - i] = 2.0 * first - buf[pad + i];
+        buf[pad + n - 1 + i] = 2.0 * last - buf[pad + n - 1 - i];
+    }
+    sosFilterInPlace(sos, buf.data(), buf.size(), false);
+    sosFilterInPlace(sos, buf.data(), buf.size(), true);
+}
+
+size_t computeImpulseResponseLength(const Sos& sos, double tolerance) {
     for (size_t n = size_t{1} << 12;; n *= 2) {
         std::vector<double> imp(n, 0.0);
         imp[1] = 1.0;  // imp[0] = 0: sosFilter starts in the steady state of a zero input
@@ -153,13 +193,54 @@ size_t impulseResponseLength(const Sos& sos, double tolerance) {
     }
 }
 
+bool sameSos(const Sos& a, const Sos& b) {
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (a[i].b0 != b[i].b0 || a[i].b1 != b[i].b1 || a[i].b2 != b[i].b2 || a[i].a1 != b[i].a1 || a[i].a2 != b[i].a2)
+            return false;
+    return true;
+}
+
+}  // namespace
+
+std::vector<double> filtfilt(const Sos& sos, const std::vector<double>& x) {
+    const size_t n = x.size();
+    if (sos.empty() || n < 2) return x;
+    const size_t pad = reflectionPad(sos, n);
+    std::vector<double> buf(n + 2 * pad);
+    std::copy(x.begin(), x.end(), buf.begin() + static_cast<long>(pad));
+    filtfiltPadded(sos, buf, pad, n);
+    return std::vector<double>(buf.begin() + static_cast<long>(pad), buf.begin() + static_cast<long>(pad + n));
+}
+
+size_t impulseResponseLength(const Sos& sos, double tolerance) {
+    if (sos.empty()) return 0;
+    // Remembered per thread for the last few filters: predictions ask for the same filter's
+    // length at every evaluation of a fit.
+    struct Known {
+        Sos sos;
+        double tolerance;
+        size_t length;
+    };
+    thread_local std::vector<Known> known;
+    for (const Known& k : known)
+        if (k.tolerance == tolerance && sameSos(k.sos, sos)) return k.length;
+    const size_t len = computeImpulseResponseLength(sos, tolerance);
+    if (known.size() >= 8) known.erase(known.begin());
+    known.push_back(Known{sos, tolerance, len});
+    return len;
+}
+
 std::vector<double> filtfiltZeroExtended(const Sos& sos, const std::vector<double>& x, size_t margin) {
     if (sos.empty() || x.empty()) return x;
     if (margin == 0) margin = impulseResponseLength(sos);
-    std::vector<double> ext(x.size() + 2 * margin, 0.0);
-    std::copy(x.begin(), x.end(), ext.begin() + static_cast<long>(margin));
-    const std::vector<double> y = filtfilt(sos, ext);
-    return std::vector<double>(y.begin() + static_cast<long>(margin), y.begin() + static_cast<long>(margin + x.size()));
+    // filtfilt of x with `margin` zeros on each side, built in one buffer with filtfilt's padding.
+    const size_t n = x.size() + 2 * margin;
+    const size_t pad = reflectionPad(sos, n);
+    std::vector<double> buf(n + 2 * pad, 0.0);
+    std::copy(x.begin(), x.end(), buf.begin() + static_cast<long>(pad + margin));
+    filtfiltPadded(sos, buf, pad, n);
+    return std::vector<double>(buf.begin() + static_cast<long>(pad + margin), buf.begin() + static_cast<long>(pad + margin + x.size()));
 }
 
 std::vector<double> savitzkyGolay(const std::vector<double>& y, double dt, int h, int order, int deriv) {

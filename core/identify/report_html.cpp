@@ -139,12 +139,22 @@ std::string renderHtmlReport(const IdentifyResult& r) {
               << "</td><td>" << fmt(p.stderr_) << "</td><td>" << fmt(e.deltaBic, "%.1f") << "</td><td class=l>" << htmlEscape(ptr)
               << "</td></tr>\n";
     }
-    o << "</table>\n<h3>Candidates</h3><table><tr><th>effect</th><th>round</th><th>&Delta;BIC</th><th>fit NRMSE</th>"
+    o << "</table>\n<h3>Candidates</h3><p>Added only if &Delta;BIC &lt; &minus;margin, the held-out error is lower "
+         "consistently over the held-out runs (paired t-test, one-sided p &lt; " << fmt(r.heldOutAlpha, "%g")
+      << ") and the size parameter is more than t<sub>K&minus;1</sub> jackknife standard errors from where the effect vanishes "
+         "(level " << fmt(r.identifiabilityAlpha, "%g") << ").</p><table><tr><th>effect</th><th>round</th><th>&Delta;BIC</th>"
+         "<th>fit NRMSE</th><th>held-out NRMSE</th><th>paired p</th><th>|size &minus; vanishing value| / s.e.</th><th>t crit.</th>"
          "<th>verdict</th></tr>\n";
-    for (const CandidateScore& c : r.candidates)
+    for (const CandidateScore& c : r.candidates) {
+        const bool ho = c.heldOutUnits > 0, sz = !c.sizeParam.empty() && c.sizeStderr > 0;
         o << "<tr><td class=l>" << htmlEscape(c.name) << "</td><td>" << c.round << "</td><td>"
           << (c.applicable ? fmt(c.deltaBic, "%.1f") : "&ndash;") << "</td><td>" << (c.applicable ? fmt(c.fitNrmse) : "&ndash;")
-          << "</td><td class=l>" << (c.accepted ? "added" : htmlEscape(c.reason)) << "</td></tr>\n";
+          << "</td><td>" << (c.heldOutNrmse >= 0 ? fmt(c.heldOutNrmse) : "&ndash;") << "</td><td>"
+          << (ho && c.heldOutP >= 0 ? fmt(c.heldOutP, "%.3g") : "&ndash;") << "</td><td>"
+          << (sz ? fmt(std::abs(c.sizeValue - c.sizeNull) / c.sizeStderr, "%.2f") : "&ndash;") << "</td><td>"
+          << (sz ? fmt(c.sizeCritical, "%.2f") : "&ndash;") << "</td><td class=l>"
+          << (c.accepted ? "added" : htmlEscape(c.reason)) << "</td></tr>\n";
+    }
     o << "</table>\n<h3>Parameters</h3><table><tr><th>parameter</th><th>baseline</th><th>&plusmn;</th></tr>\n";
     for (const ParamEstimate& p : r.baseline)
         o << "<tr><td class=l>" << htmlEscape(p.name) << "</td><td>" << fmt(p.value) << "</td><td>" << fmt(p.stderr_) << "</td></tr>\n";

@@ -1,5 +1,6 @@
 #include "dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace stickslip {
@@ -53,7 +54,7 @@ ParamIssues DynamicsModel::validate() const {
 }
 
 RunResult simulateDynamics(const DynamicsModel& m, DynState& s, long steps, long outputEvery, bool recordStart,
-                           const RunControl& ctl) {
+                           const RunControl& ctl, const PeriodRecording& period) {
     RunResult res;
     if (const ParamIssues issues = m.validate(); !issues.empty()) {
         res.status = RunStatus::Failed;
@@ -64,21 +65,50 @@ RunResult simulateDynamics(const DynamicsModel& m, DynState& s, long steps, long
     // Reserve what is cheap; long runs grow as they go (a cancelled run may never need it all).
     res.samples.reserve(static_cast<size_t>(std::min<long>(steps / outputEvery + 2, 1L << 20)));
     if (recordStart) res.samples.push_back(toSample(m, s));
+    const long N = std::max(0L, period.stepsPerPeriod);
+    res.period.stepsPerPeriod = N;
+    // Countdowns to the next output sample and the next whole period (no division per step).
+    long untilOutput = outputEvery;
+    long untilPeriod = N > 0 ? N - ((period.stepsBefore % N) + N) % N : 0;
+    if (N > 0) res.period.samples.reserve(static_cast<size_t>(std::min<long>(steps / N + 1, 1L << 16)));
+    double maxV = 0.0;
     long done = 0;
     const long chunk = std::max<long>(outputEvery, 1L << 14) / outputEvery * outputEvery;
     while (done < steps) {
         const long n = std::min(chunk, steps - done);
-        long local = 0;
-        auto obs = [&](const DynState& st) {
-            ++local;
-            if (((done + local) % outputEvery) == 0) res.samples.push_back(toSample(m, st));
-        };
-        StepReport rep = advance(m, s, n, obs, ctl, done);
+        StepReport rep;
+        if (N > 0) {
+            // The stage velocity as advance() computes it (same recurrence from the same start).
+            detail::StageSequence stage(m.stage, s.t, m.dt_s);
+            auto obs = [&](const DynState& st) {
+                stage.next();
+                const double V = std::abs(stage.velocity() - st.v);
+                if (V > maxV) maxV = V;
+                if (--untilOutput == 0) {
+                    res.samples.push_back(toSample(m, st));
+                    untilOutput = outputEvery;
+                }
+                if (--untilPeriod == 0) {
+                    res.period.samples.push_back(toSample(m, st));
+                    untilPeriod = N;
+                }
+            };
+            rep = advance(m, s, n, obs, ctl, done);
+        } else {
+            auto obs = [&](const DynState& st) {
+                if (--untilOutput == 0) {
+                    res.samples.push_back(toSample(m, st));
+                    untilOutput = outputEvery;
+                }
+            };
+            rep = advance(m, s, n, obs, ctl, done);
+        }
         done += rep.stepsDone;
         res.stats.steps += rep.stepsDone;
         res.stats.newtonIterations += rep.newtonIterations;
         res.stats.lawIterations += rep.lawIterations;
         res.stats.stuckSteps += rep.stuckSteps;
+        res.period.maxRelVel_mps = maxV;
         if (rep.status != RunStatus::Ok) {
             res.status = rep.status;
             res.message = rep.message;
@@ -92,6 +122,13 @@ RunResult simulateDynamics(const DynamicsModel& m, DynState& s, long steps, long
         if (ctl.progress) ctl.progress(static_cast<double>(done) / static_cast<double>(steps));
     }
     return res;
+}
+
+long stepsPerPeriodDividing(const SimParams& p) {
+    const double T = p.drive.period(), dt = p.integration.dt_s;
+    if (!(T > 0) || !(dt > 0) || !std::isfinite(T / dt) || T / dt > 1e12) return 0;
+    const long N = std::lround(T / dt);
+    return N >= 1 && std::abs(static_cast<double>(N) * dt - T) <= 1e-9 * T ? N : 0;
 }
 
 RunResult simulateDynamics(const SimParams& p, const RunControl& ctl) {
@@ -118,7 +155,8 @@ RunResult simulateDynamics(const SimParams& p, const RunControl& ctl) {
             return r;
         }
     }
-    return simulateDynamics(m, s, recSteps, p.integration.outputEvery(), true, ctl);
+    return simulateDynamics(m, s, recSteps, p.integration.outputEvery(), true, ctl,
+                            PeriodRecording{stepsPerPeriodDividing(p), transientSteps});
 }
 
 }  // namespace stickslip

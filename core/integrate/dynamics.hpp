@@ -259,12 +259,24 @@ inline StepReport advanceQuiet(const DynamicsModel& m, DynState& s, long n, cons
 
 Sample toSample(const DynamicsModel& m, const DynState& s);
 
+// Once-per-period recording (RunResult::period): the state after every step whose index
+// counted from t = 0 (stepsBefore + steps taken in this call) is a multiple of stepsPerPeriod,
+// and max |V| over the steps of this call. stepsPerPeriod = 0: none.
+struct PeriodRecording {
+    long stepsPerPeriod = 0;
+    long stepsBefore = 0;
+};
+
+// N such that N·dt is the forcing period to 1e-9 of it, or 0 when dt does not divide the period.
+long stepsPerPeriodDividing(const SimParams& p);
+
 // A full run as SimParams say: transient cycles discarded, then `cycles` recorded at the
-// output interval. Validates the parameters first (Failed with the list of issues).
+// output interval; when the step divides the forcing period, also the states at every whole
+// period (RunResult::period). Validates the parameters first (Failed with the list of issues).
 RunResult simulateDynamics(const SimParams& p, const RunControl& ctl = {});
 // The same from a prepared model and state (continuation, fits): runs `steps` steps,
 // recording every `outputEvery` steps (and the start state when recordStart).
 RunResult simulateDynamics(const DynamicsModel& m, DynState& s, long steps, long outputEvery, bool recordStart,
-                           const RunControl& ctl = {});
+                           const RunControl& ctl = {}, const PeriodRecording& period = {});
 
 }  // namespace stickslip

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <variant>
 
 namespace stickslip {
@@ -89,6 +90,12 @@ RunResult runPrescribed(const Law& law, double tNconst, const SlipHistory& h, in
         res.samples.push_back(s);
     };
     record(0, 0.0, true);
+    // The law's per-step constants are prepared once and kept while Δt and t_N stay the same
+    // (every step of a uniformly sampled history with constant t_N): the same numbers as
+    // law.returnMap(st, Δg, Δt, t_N) step by step, without recomputing them (and exp(α/r) of
+    // a stuck step) every step.
+    auto prep = law.prepare(law.epsT(), 1.0, tNconst);
+    double prepDt = std::numeric_limits<double>::quiet_NaN(), prepTN = prepDt;
     for (size_t i = 1; i < n; ++i) {
         if ((i & 1023) == 0) {
             if (ctl.cancelled()) { res.status = RunStatus::Cancelled; res.message = "cancelled"; return res; }
@@ -102,7 +109,12 @@ RunResult runPrescribed(const Law& law, double tNconst, const SlipHistory& h, in
         bool stuck = true;
         for (int j = 1; j <= substeps; ++j) {
             const double tN = tN0 + (tN1 - tN0) * j / substeps;
-            const ReturnMapResult r = law.returnMap(st, dg, dt, tN);
+            if (!(dt == prepDt && tN == prepTN)) {
+                prep = law.prepare(law.epsT(), dt, tN);
+                prepDt = dt;
+                prepTN = tN;
+            }
+            const ReturnMapResult r = prep.returnMapFromTrial(st, st.force_N + law.epsT() * dg);  // = law.returnMap(st, dg, dt, tN)
             res.stats.lawIterations += r.iterations;
             ++res.stats.steps;
             if (!r.converged || !std::isfinite(r.state.force_N) || !std::isfinite(r.state.alpha)) {

@@ -32,11 +32,21 @@ struct RunStats {
     long stuckSteps = 0;
 };
 
+// Once per forcing period over the recorded steps of a dynamics run whose step divides the
+// period: the state at every whole period t = kT (the Poincaré section at phase 0, read by
+// core/analysis/poincare.hpp sectionOfRun) and max |V| over every recorded step.
+struct PeriodRecord {
+    long stepsPerPeriod = 0;      // N = T/dt; 0: not recorded (prescribed set-up, or dt does not divide T)
+    std::vector<Sample> samples;  // states at t = kT, k·N > transient steps, in time order
+    double maxRelVel_mps = 0;     // max |V| over the recorded steps
+};
+
 struct RunResult {
     RunStatus status = RunStatus::Ok;
     std::string message;           // empty when Ok
     std::vector<Sample> samples;   // what was computed up to the end (or the failure/cancel)
     RunStats stats;
+    PeriodRecord period;           // dynamics runs: once-per-period states (above)
     bool ok() const { return status == RunStatus::Ok; }
 };
 

@@ -114,7 +114,7 @@ void checkReport(const json& rep, const QString& residualsPath, bool dynamics, c
                 QVERIFY(std::abs(c - corr["matrix"][b][a].get<double>()) < 1e-9);
             }
         }
-    for (const char* k : {"summary", "converged", "cost", "residuals", "starts", "evaluations"})
+    for (const char* k : {"summary", "converged", "cost", "residuals", "starts", "stopped_early", "evaluations"})
         QVERIFY2(rep["solver"].contains(k), k);
     QVERIFY(rep["solver"]["residuals"].get<int>() > 0);
     for (const char* k : {"band_stop", "low_pass", "savitzky_golay", "trim", "runs"})

@@ -11,6 +11,7 @@
 #include "core/analysis/lyapunov.hpp"
 #include "core/analysis/poincare.hpp"
 #include "core/analysis/stick_threshold.hpp"
+#include "core/integrate/simulate.hpp"
 #include "core/presets.hpp"
 
 using namespace stickslip;
@@ -66,6 +67,66 @@ private slots:
         QCOMPARE(stepsPerPeriodFor(p, 0), 10000L);  // default dt = T/10 000 at 3 Hz
         QCOMPARE(stepsPerPeriodFor(p, 123), 123L);
         QCOMPARE(poincareModel(p, 1000).dt_s, T / 1000);
+    }
+    // The phase-0 section a run records (RunResult::period, read by sectionOfRun) equals
+    // poincareSection with the same step, settle = transient and cycles: the same steps, so the
+    // same points up to round-off (the stage phase is re-anchored at other steps), and the same
+    // stick/slip counts and max |V|.
+    void sectionOfRunEqualsPoincareSection() {
+        for (const char* name : {"fig20", "fig23"}) {
+            SimParams p = preset(name);
+            p.integration.dt_s = p.drive.period() / 4000.0;
+            for (double transient : {0.0, 3.0}) {
+                p.transientCycles = transient;
+                p.cycles = 7;
+                const RunResult run = simulate(p);
+                QVERIFY2(run.ok(), run.message.c_str());
+                QCOMPARE(run.period.stepsPerPeriod, 4000L);
+                PoincareOptions o;
+                o.settleCycles = static_cast<long>(transient);
+                o.cycles = 7;
+                const PoincareSection ref = poincareSection(p, o);
+                QVERIFY2(ref.ok(), ref.message.c_str());
+                const PoincareSection sec = sectionOfRun(run, p.drive.period());
+                QVERIFY2(sec.ok(), sec.message.c_str());
+                QCOMPARE(sec.size(), ref.size());
+                QCOMPARE(sec.size(), std::size_t(7));
+                double xScale = 0, vScale = 0;
+                for (const Sample& s : run.samples) {
+                    xScale = std::max(xScale, std::abs(s.slider_m));
+                    vScale = std::max(vScale, std::abs(s.relVel_mps));
+                }
+                for (std::size_t i = 0; i < sec.size(); ++i) {
+                    QVERIFY(std::abs(sec.t_s[i] - ref.t_s[i]) <= 1e-12 * ref.t_s[i]);
+                    QVERIFY2(std::abs(sec.slider_m[i] - ref.slider_m[i]) <= 1e-9 * xScale,
+                             qPrintable(QString("%1 point %2: x %3 vs %4").arg(name).arg(i)
+                                            .arg(sec.slider_m[i], 0, 'g', 17).arg(ref.slider_m[i], 0, 'g', 17)));
+                    QVERIFY(std::abs(sec.relVel_mps[i] - ref.relVel_mps[i]) <= 1e-9 * vScale);
+                    QVERIFY(std::abs(sec.ratio[i] - ref.ratio[i]) <= 1e-9);
+                    QVERIFY(std::abs(sec.alpha[i] - ref.alpha[i]) <= 1e-9 * (1 + std::abs(ref.alpha[i])));
+                }
+                // Stuck/slip decisions can only flip on a step within round-off of the slip threshold.
+                QVERIFY(std::abs(sec.slipSteps - ref.slipSteps) <= 2);
+                QVERIFY(std::abs(sec.stickFraction - ref.stickFraction) <= 1e-4);
+                QVERIFY(sec.slipSteps > 0);
+                QVERIFY(std::abs(sec.maxRelVel_mps - ref.maxRelVel_mps) <= 1e-9 * ref.maxRelVel_mps);
+            }
+        }
+        // No section when the step does not divide the period, nor for prescribed slip.
+        SimParams p = preset("fig20");
+        p.integration.dt_s = p.drive.period() / 4000.5;
+        p.cycles = 2;
+        const RunResult odd = simulate(p);
+        QVERIFY(odd.ok());
+        QCOMPARE(odd.period.stepsPerPeriod, 0L);
+        QVERIFY(odd.period.samples.empty());
+        const PoincareSection none = sectionOfRun(odd, p.drive.period());
+        QVERIFY(!none.ok());
+        QVERIFY(none.message.find("dt does not divide") != std::string::npos);
+        QCOMPARE(stepsPerPeriodDividing(p), 0L);
+        const RunResult block = simulate(preset("fig16"));
+        QVERIFY(block.ok());
+        QCOMPARE(block.period.stepsPerPeriod, 0L);
     }
     // The motion measures of advanceSampledCycle (max |V| over every step, stuck/slip step
     // counts) against a brute-force pass over the same steps with the exact stage velocity.

@@ -27,6 +27,52 @@ private slots:
         QVERIFY(std::abs(chiSquareSurvival(2.0, 2) - std::exp(-1.0)) < 1e-10);
         QCOMPARE(chiSquareSurvival(0.0, 5), 1.0);
     }
+    void studentTDistribution() {
+        // Table values (e.g. Abramowitz & Stegun 26.10): t_{0.95} and t_{0.975}.
+        const struct { double p, dof, t; } table[] = {{0.95, 3, 2.353363434801823}, {0.975, 3, 3.182446305284263},
+                                                      {0.95, 4, 2.131846786326649}, {0.975, 4, 2.776445105197793},
+                                                      {0.975, 1, 12.70620473617471}, {0.975, 1e6, 1.959966},
+                                                      {0.5, 7, 0.0}};
+        for (const auto& c : table) {
+            QVERIFY2(std::abs(studentTQuantile(c.p, c.dof) - c.t) < 1e-5 * std::max(1.0, c.t),
+                     qPrintable(QString("p %1 dof %2: %3").arg(c.p).arg(c.dof).arg(studentTQuantile(c.p, c.dof))));
+            QVERIFY(std::abs(studentTSurvival(c.t, c.dof) - (1.0 - c.p)) < 1e-6);
+        }
+        QVERIFY(std::abs(studentTSurvival(1.0, 1) - 0.25) < 1e-12);  // Cauchy: 1/2 − atan(1)/π
+        QVERIFY(std::abs(studentTSurvival(-2.0, 5) + studentTSurvival(2.0, 5) - 1.0) < 1e-12);
+        QVERIFY(std::isnan(studentTQuantile(1.0, 3)));
+        QVERIFY(std::isnan(studentTSurvival(1.0, 0)));
+    }
+    void pairedTestAndJackknife() {
+        // d = ln 2 in every unit: no spread, infinitely significant.
+        const PairedTest same = pairedLogRatioTest({2, 4, 8}, {1, 2, 4});
+        QCOMPARE(same.units, 3);
+        QVERIFY(std::abs(same.meanLogRatio - std::log(2.0)) < 1e-12);
+        QCOMPARE(same.pValue, 0.0);
+        // d = ln(1.5), ln(1.1), ln(0.9), ln(1.2): mean 0.1133, sd 0.1986, t = 1.1410, 3 dof.
+        const std::vector<double> b = {1.5, 1.1, 0.9, 1.2}, a = {1, 1, 1, 1};
+        const PairedTest mixed = pairedLogRatioTest(b, a);
+        double m = 0, ss = 0;
+        for (double v : b) m += std::log(v) / 4;
+        for (double v : b) ss += (std::log(v) - m) * (std::log(v) - m);
+        const double t = m / std::sqrt(ss / 3 / 4);
+        QVERIFY(std::abs(mixed.t - t) < 1e-12);
+        QVERIFY(std::abs(mixed.pValue - studentTSurvival(t, 3)) < 1e-15);
+        QVERIFY(mixed.pValue > 0.05);  // one worse unit out of four: not significant
+        // Missing units are skipped; fewer than two: no test.
+        QCOMPARE(pairedLogRatioTest({1, 0, 2}, {0.5, 1, 1}).units, 2);
+        QVERIFY(std::isnan(pairedLogRatioTest({1}, {0.5}).pValue));
+        // Jackknife of the mean: the leave-one-out means give exactly sd/√K.
+        const std::vector<double> x = {1.0, 2.0, 4.0, 7.0, 11.0};
+        std::vector<double> loo;
+        double sum = 0;
+        for (double v : x) sum += v;
+        for (double v : x) loo.push_back((sum - v) / 4.0);
+        double mx = sum / 5, sx = 0;
+        for (double v : x) sx += (v - mx) * (v - mx);
+        QVERIFY(std::abs(jackknifeStderr(loo) - std::sqrt(sx / 4.0 / 5.0)) < 1e-12);
+        QVERIFY(std::isnan(jackknifeStderr({1.0})));
+    }
     void autocorrelationOfNoiseAndSine() {
         const auto w = whiteNoise(20000, 1);
         const auto acf = autocorrelation(w, 10);

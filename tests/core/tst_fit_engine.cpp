@@ -125,6 +125,78 @@ private slots:
         QCOMPARE(res.startsTried, 1);
     }
 
+    // The same problem through the batch callback gives the same fit bit for bit; the reported
+    // evaluations are the residual vectors actually computed (repeated points are remembered).
+    void batchCallbackAndEvaluationCount() {
+        std::vector<double> t, y;
+        for (int i = 0; i < 100; ++i) {
+            t.push_back(i * 0.02);
+            y.push_back(2.0 * std::exp(-3.0 * t.back()) + 0.01 * std::sin(17.0 * i));
+        }
+        auto model = [&](const std::vector<double>& v, std::vector<double>& r) {
+            for (size_t i = 0; i < t.size(); ++i) r[i] = v[0] * std::exp(-v[1] * t[i]) - y[i];
+            return true;
+        };
+        FitProblem p;
+        p.parameters = {{"a", 1.0, 0.1, 10.0, true, ParamScale::Linear}, {"b", 1.0, 0.01, 100.0, true, ParamScale::Log}};
+        p.residualCount = t.size();
+        long calls = 0;
+        p.residuals = [&](const std::vector<double>& v, std::vector<double>& r) { ++calls; return model(v, r); };
+        p.multistarts = 2;
+        const FitResult single = fitLeastSquares(p);
+        QVERIFY(single.ok());
+        QCOMPARE(single.residualEvaluations, calls);
+        long batched = 0, batches = 0;
+        FitProblem b = p;
+        b.residuals = nullptr;
+        b.batchResiduals = [&](const std::vector<std::vector<double>>& pts, std::vector<std::vector<double>>& rs, std::vector<char>& ok) {
+            ++batches;
+            ok.assign(pts.size(), 0);
+            for (size_t k = 0; k < pts.size(); ++k) {
+                ++batched;
+                QCOMPARE(rs[k].size(), t.size());
+                ok[k] = model(pts[k], rs[k]) ? 1 : 0;
+            }
+        };
+        QVERIFY(b.validate().empty());
+        const FitResult viaBatch = fitLeastSquares(b);
+        QVERIFY(viaBatch.ok());
+        QVERIFY(viaBatch.values == single.values);
+        QVERIFY(viaBatch.stderrs == single.stderrs);
+        QVERIFY(viaBatch.startCosts == single.startCosts);
+        QCOMPARE(viaBatch.residualEvaluations, batched);
+        QVERIFY(batches < batched);  // Jacobian points come together
+    }
+
+    // agreeingStarts: stop once that many starts ended at the same (best) cost.
+    void multistartStopsWhenStartsAgree() {
+        std::vector<double> t, y;
+        for (int i = 0; i < 100; ++i) {
+            t.push_back(i * 0.02);
+            y.push_back(2.0 * std::exp(-3.0 * t.back()) + 0.01 * std::sin(17.0 * i));
+        }
+        FitProblem p;
+        p.parameters = {{"a", 1.0, 0.1, 10.0, true, ParamScale::Linear}, {"b", 1.0, 0.01, 100.0, true, ParamScale::Log}};
+        p.residualCount = t.size();
+        p.residuals = [&](const std::vector<double>& v, std::vector<double>& r) {
+            for (size_t i = 0; i < t.size(); ++i) r[i] = v[0] * std::exp(-v[1] * t[i]) - y[i];
+            return true;
+        };
+        p.multistarts = 5;
+        const FitResult all = fitLeastSquares(p);
+        QVERIFY(all.ok());
+        QCOMPARE(all.startsTried, 5);
+        QVERIFY(!all.stoppedEarly);
+        p.agreeingStarts = 2;
+        const FitResult early = fitLeastSquares(p);
+        QVERIFY(early.ok());
+        QCOMPARE(early.startsTried, 2);
+        QVERIFY(early.stoppedEarly);
+        QVERIFY(early.solverSummary.find("stopped after 2 of 5 starts") != std::string::npos);
+        QVERIFY(std::abs(early.cost - all.cost) <= 1e-6 * all.cost);
+        QVERIFY(std::abs(early.value("b") - all.value("b")) < 1e-3 * all.stderrOf("b"));
+    }
+
     void defaultParametersHavePhysicalBounds() {
         FitParameter fp;
         QVERIFY(defaultParameter("eta", stickslip::SetupKind::Dynamics, fp));

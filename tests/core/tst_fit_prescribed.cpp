@@ -139,6 +139,69 @@ private slots:
         }
     }
 
+    // The (point, run) tasks of a dataset fit may run on any number of threads: the same
+    // numbers (bit for bit) on one thread as on three, and the same count of evaluations.
+    void threadCountDoesNotChangeTheFit() {
+        const std::vector<CleanRun> runs = {measuredPrescribed(2e-3, 2.0, 10.0, 1, true), measuredPrescribed(4e-3, 3.0, 15.0, 2, true),
+                                            measuredPrescribed(1e-3, 2.0, 10.0, 3, true)};
+        DatasetFitSettings st;
+        st.setup = SetupKind::Prescribed;
+        st.law = LawKind::RateState;
+        st.free = {"mu", "eta", "vc", "epsT"};
+        st.start = {{"Dc", 50e-6}};
+        st.multistarts = 2;
+        st.maxIterations = 8;
+        st.threads = 1;
+        const DatasetFit one = fitDataset(runs, {}, st);
+        st.threads = 3;
+        const DatasetFit three = fitDataset(runs, {}, st);
+        QVERIFY2(one.ok && three.ok, (one.message + three.message).c_str());
+        QVERIFY(one.fit.values == three.fit.values);
+        QVERIFY(one.fit.stderrs == three.fit.stderrs);
+        QVERIFY(one.fit.startCosts == three.fit.startCosts);
+        QCOMPARE(one.fit.residualEvaluations, three.fit.residualEvaluations);
+        QCOMPARE(one.tauInt, three.tauInt);
+        QCOMPARE(one.fitNrmse, three.fitNrmse);
+    }
+
+    // simulatePrescribed prepares the law's step constants once per (Δt, t_N): bit for bit the
+    // same run as calling law.returnMap step by step, also when Δt and t_N change.
+    void prescribedRunEqualsStepByStepReturnMap() {
+        std::vector<double> t, g, tN;
+        double time = 0;
+        for (int i = 0; i <= 400; ++i) {
+            t.push_back(time);
+            g.push_back(2e-3 * std::sin(2 * std::numbers::pi * 2.0 * time));
+            tN.push_back(i < 200 ? 10.0 : 10.0 + 0.01 * (i - 200));  // constant, then varying
+            time += (i % 50 < 25) ? 1e-3 : 1.3e-3;                    // two step sizes
+        }
+        for (const bool varying : {false, true}) {
+            SlipHistory h = SlipHistory::fromSlip(t, g);
+            if (varying) h.normalForce_N = tN;
+            const RateStateLaw law{truthLaw()};
+            const int sub = 3;
+            LawState init;
+            init.force_N = 0.5;
+            const RunResult r = simulatePrescribed(FrictionLaw{law}, 10.0, h, sub, {}, init);
+            QVERIFY2(r.ok(), r.message.c_str());
+            LawState st = init;
+            long stuck = 0;
+            for (size_t i = 1; i < t.size(); ++i) {
+                const double dt = (t[i] - t[i - 1]) / sub, dg = (g[i] - g[i - 1]) / sub;
+                const double tN0 = varying ? tN[i - 1] : 10.0, tN1 = varying ? tN[i] : 10.0;
+                for (int j = 1; j <= sub; ++j) {
+                    const ReturnMapResult m = law.returnMap(st, dg, dt, tN0 + (tN1 - tN0) * j / sub);
+                    st = m.state;
+                    stuck += m.stuck ? 1 : 0;
+                }
+                QCOMPARE(r.samples[i].force_N, st.force_N);
+                QCOMPARE(r.samples[i].alpha, st.alpha);
+            }
+            QCOMPARE(r.stats.stuckSteps, stuck);
+            QVERIFY(stuck > 0 && stuck < r.stats.steps);  // both branches exercised
+        }
+    }
+
     void timeSplitPartitionsTheWindow() {
         const CleanRun c = measuredPrescribed(2e-3, 2.0, 10.0, 4);
         const auto [a, b] = splitByTime(c, 0.7);

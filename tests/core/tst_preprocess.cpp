@@ -2,6 +2,7 @@
 // differentiation, resampling, trimming of ramps, and the whole chain on measured runs.
 #include <QtTest>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -111,6 +112,37 @@ private slots:
         const std::vector<double> fy = filtfiltZeroExtended(sos, y), fs2 = filtfiltZeroExtended(sos, sum);
         for (size_t i = 0; i < x.size(); ++i) QVERIFY(std::abs(fs2[i] - (2.0 * fx[i] - 3.0 * fy[i])) < 1e-9 * scale);
         QVERIFY(filtfiltZeroExtended(Sos{}, x) == x);
+    }
+
+    // filtfilt is exactly (bit for bit) the two-pass definition: odd reflection, causal pass,
+    // reverse, causal pass, reverse; and the zero-extended form exactly filtfilt of the
+    // zero-padded stretch.
+    void filtfiltEqualsTheTwoPassDefinition() {
+        const double fs = 1024;
+        Sos sos = butterworthBandstop(2, 55, 65, fs);
+        const Sos lp = butterworthLowpass(4, 100, fs);
+        sos.insert(sos.end(), lp.begin(), lp.end());
+        std::vector<double> x;
+        for (int i = 0; i < 3000; ++i) x.push_back(std::sin(0.01 * i) + 0.3 * std::sin(2 * kPi * 60 * i / fs) + (i % 7) * 0.01);
+        const size_t n = x.size(), pad = 3 * (2 * sos.size() + 1);
+        std::vector<double> ext;
+        for (size_t i = pad; i >= 1; --i) ext.push_back(2.0 * x[0] - x[i]);
+        ext.insert(ext.end(), x.begin(), x.end());
+        for (size_t i = 1; i <= pad; ++i) ext.push_back(2.0 * x[n - 1] - x[n - 1 - i]);
+        std::vector<double> y = sosFilter(sos, ext);
+        std::reverse(y.begin(), y.end());
+        y = sosFilter(sos, y);
+        std::reverse(y.begin(), y.end());
+        const std::vector<double> want(y.begin() + static_cast<long>(pad), y.begin() + static_cast<long>(pad + n));
+        QVERIFY(filtfilt(sos, x) == want);
+        const size_t L = impulseResponseLength(sos);
+        QCOMPARE(impulseResponseLength(sos), L);  // remembered: the same answer
+        const std::vector<double> shortX(x.begin(), x.begin() + 200);
+        std::vector<double> padded(200 + 2 * L, 0.0);
+        std::copy(shortX.begin(), shortX.end(), padded.begin() + static_cast<long>(L));
+        const std::vector<double> full = filtfilt(sos, padded);
+        QVERIFY(filtfiltZeroExtended(sos, shortX) == std::vector<double>(full.begin() + static_cast<long>(L), full.begin() + static_cast<long>(L + 200)));
+        QVERIFY(filtfiltZeroExtended(sos, shortX, 37) != filtfiltZeroExtended(sos, shortX));  // the margin matters
     }
 
     void savitzkyGolayDifferentiates() {

@@ -24,6 +24,7 @@
 #include "view_set.hpp"
 #include "widgets/friction_loop_plot.hpp"
 #include "widgets/phase_portrait_plot.hpp"
+#include "widgets/poincare_plot.hpp"
 #include "widgets/time_series_plot.hpp"
 
 using namespace stickslip;
@@ -74,6 +75,7 @@ private slots:
     void sliderChangeReachesThePlots() {
         // A closed view is not redrawn per result (checked below).
         w->dock("phase")->hide();
+        const int poincareJobs = w->controller()->launchedCount(JobKind::Poincare);
         // A: 1 mm → 2.5 mm (position 250 of the 0–10 mm slider).
         w->panel()->slider("A")->setValue(250);
         RunOutcome o;
@@ -111,7 +113,34 @@ private slots:
         QCOMPARE(traj->dataSize(), direct.samples.size());
         for (size_t i = 0; i < direct.samples.size(); i += 97)
             QVERIFY(std::abs(traj->sample(i).x() - 1e3 * direct.samples[i].slider_m) <= 1e-9);
+        // Tabified behind the loop view: the Poincaré view is visible but off screen, so it is not
+        // redrawn per result; bringing its tab to the front draws this run's section, which
+        // the run recorded (no Poincaré job) and which equals the core's poincareSection.
+        QVERIFY(o.sectionInRun);
+        QCOMPARE(w->controller()->launchedCount(JobKind::Poincare), poincareJobs);
+        auto* poincare = w->views()->poincare();
+        QVERIFY(poincare->isVisible());
+        QVERIFY(!poincare->isOnScreen());
+        QVERIFY(poincare->hasPendingUpdate());
+        w->raiseView("poincare");
+        QTRY_VERIFY(poincare->isOnScreen());
+        QVERIFY(!poincare->hasPendingUpdate());
+        PoincareOptions opt;
+        opt.settleCycles = std::lround(o.settings.params.transientCycles);
+        opt.cycles = std::lround(o.settings.params.cycles);
+        const PoincareSection section = poincareSection(o.settings.params, opt);
+        QVERIFY(section.ok());
+        QwtPlotCurve* dots = poincare->curve("rate-state: section");
+        QVERIFY(dots);
+        QCOMPARE(dots->dataSize(), section.size());
+        for (size_t i = 0; i < section.size(); ++i) {
+            QVERIFY(std::abs(dots->sample(i).x() - 1e3 * section.slider_m[i]) <= 1e-9);
+            QVERIFY(std::abs(dots->sample(i).y() - section.relVel_mps[i]) <= 1e-9);
+        }
+        QVERIFY(!w->views()->frictionLoop()->isOnScreen());   // now behind the Poincaré tab
         w->raiseView("loop");
+        QTRY_VERIFY(w->views()->frictionLoop()->isOnScreen());
+        QVERIFY(!w->views()->frictionLoop()->hasPendingUpdate());
     }
 
     void presetSwitch() {

@@ -263,10 +263,51 @@ void TestWidgets::loopOrientationMarksClockwise() {
         QVERIFY2(std::abs(std::abs(m.signedArea) - expected) < 0.05 * expected, qPrintable(QString::number(m.signedArea)));
     }
     QVERIFY(w.curve("rate-state: trajectory"));
-    QVERIFY(w.curve("rate-state: loop 0 cw"));
-    QVERIFY(w.curve("rate-state: loop 4 cw"));
-    QVERIFY(!w.curve("rate-state: loop 0 ccw"));
-    QCOMPARE(w.curve("rate-state: loop 1 cw")->pen().color(), QColor(31, 119, 180));
+    // The five loops are the five pieces of one clockwise item, each exactly its excursion's samples.
+    auto* cw = dynamic_cast<PiecewiseCurve*>(w.curve("rate-state: loops cw"));
+    QVERIFY(cw);
+    QVERIFY(!w.curve("rate-state: loops ccw"));
+    QVERIFY(!w.curve("rate-state: loops flat"));
+    QCOMPARE(cw->pen().color(), QColor(31, 119, 180));
+    QCOMPARE(cw->testItemAttribute(QwtPlotItem::Legend), false);
+    QCOMPARE(cw->pieces().size(), 5);
+    const RunResult run = ellipseRun(true, 3, T, 200);
+    size_t total = 0;
+    for (int k = 0; k < 5; ++k) {
+        const QVector<QPointF> piece = cw->pieceSamples(k);
+        QVERIFY(piece.size() > 2);
+        total += static_cast<size_t>(piece.size());
+        for (const QPointF& p : piece) QVERIFY(p.x() * marks[static_cast<size_t>(k)].sign > 0);   // one sign of V
+        // First and last samples at the excursion's time span.
+        size_t first = 0;
+        while (run.samples[first].t_s < marks[static_cast<size_t>(k)].t0_s) ++first;
+        QCOMPARE(piece.front(), QPointF(run.samples[first].relVel_mps, run.samples[first].ratio));
+        size_t last = first;
+        while (run.samples[last].t_s < marks[static_cast<size_t>(k)].t1_s) ++last;
+        QCOMPARE(piece.back(), QPointF(run.samples[last].relVel_mps, run.samples[last].ratio));
+        QCOMPARE(static_cast<size_t>(piece.size()), last - first + 1);
+    }
+    QCOMPARE(cw->dataSize(), total);
+    // The grey trajectory keeps every sample but is drawn only between the loops: its pieces
+    // and the loops' cover every sample, joined at shared end samples.
+    auto* grey = dynamic_cast<PiecewiseCurve*>(w.curve("rate-state: trajectory"));
+    QVERIFY(grey);
+    QCOMPARE(grey->dataSize(), run.samples.size());
+    QCOMPARE(grey->pieces().size(), 6);
+    size_t greySamples = 0;
+    for (const auto& pc : grey->pieces()) greySamples += static_cast<size_t>(pc.second - pc.first + 1);
+    QCOMPARE(greySamples + total, run.samples.size() + 2 * 5);
+    // Drawing a piecewise item draws every piece (and only those).
+    w.resize(400, 300);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.plot()->replot();
+    QVERIFY(cw->lastDrawnPoints() > 5 * 2);
+    QVERIFY(cw->lastDrawnPoints() <= static_cast<int>(total));
+    // A new run refills the same items.
+    w.setRun(ellipseRun(true, 2, T, 200), T);
+    QCOMPARE(dynamic_cast<PiecewiseCurve*>(w.curve("rate-state: loops cw")), cw);
+    QCOMPARE(cw->pieces().size(), 3);
 }
 
 void TestWidgets::loopOrientationMarksCounterClockwise() {
@@ -276,9 +317,12 @@ void TestWidgets::loopOrientationMarksCounterClockwise() {
     const auto& marks = w.loopMarks(LawKind::Coulomb);
     QCOMPARE(marks.size(), size_t(3));
     for (const LoopMark& m : marks) QCOMPARE(m.orientation, +1);
-    QVERIFY(w.curve("Coulomb: loop 1 ccw"));
-    QCOMPARE(w.curve("Coulomb: loop 1 ccw")->pen().color(), QColor(214, 39, 40));
-    QCOMPARE(w.curve("Coulomb: loop 1 ccw")->pen().style(), Qt::DashLine);
+    auto* ccw = dynamic_cast<PiecewiseCurve*>(w.curve("Coulomb: loops ccw"));
+    QVERIFY(ccw);
+    QCOMPARE(ccw->pieces().size(), 3);
+    QVERIFY(!w.curve("Coulomb: loops cw"));
+    QCOMPARE(ccw->pen().color(), QColor(214, 39, 40));
+    QCOMPARE(ccw->pen().style(), Qt::DashLine);
     QVERIFY(w.loopMarks(LawKind::RateState).empty());
 }
 

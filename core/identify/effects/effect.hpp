@@ -17,6 +17,10 @@ struct EffectParam {
     double lower = 0;      // physical lower bound
     double upper = 1;      // physical upper bound
     bool logScale = false; // positive scale parameter: fitted on a log scale
+    // Value at which the effect vanishes (the size parameter, params[0], only): identify
+    // credits an effect only if its size differs from this by more than its honest
+    // uncertainty. +infinity (a stiffness): the test is made on the compliance 1/value.
+    double vanishing = 0;
 };
 
 // Which set-ups an effect can act in.

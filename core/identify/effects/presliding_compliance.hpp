@@ -1,6 +1,8 @@
 // presliding_compliance: finite tangential stiffness of the contact before gross slip.
 #pragma once
 
+#include <limits>
+
 #include "effect.hpp"
 
 namespace stickslip::identify {
@@ -23,7 +25,7 @@ struct PreslidingCompliance {
                 "Residual after each reversal and at the start of stick while the force is rising: "
                 "the model's force rises faster than measured; correlation with time since "
                 "reversal and with the displacement.",
-                {{"kt_N_per_m", "N/m", 2e5, 1e2, 1e8, true}},
+                {{"kt_N_per_m", "N/m", 2e5, 1e2, 1e8, true, std::numeric_limits<double>::infinity()}},
                 {"time_since_reversal", "displacement"},
                 {true, true}};
     }
