@@ -9,6 +9,22 @@
 
 using namespace stickslip::identify;
 
+namespace {
+
+// y = a exp(−b t) fitted to (t, y): a on a linear, b on a log scale.
+FitProblem exponentialDecayFit(std::vector<double> t, std::vector<double> y) {
+    FitProblem p;
+    p.parameters = {{"a", 1.0, 0.1, 10.0, true, ParamScale::Linear}, {"b", 1.0, 0.01, 100.0, true, ParamScale::Log}};
+    p.residualCount = t.size();
+    p.residuals = [t = std::move(t), y = std::move(y)](const std::vector<double>& v, std::vector<double>& r) {
+        for (size_t i = 0; i < t.size(); ++i) r[i] = v[0] * std::exp(-v[1] * t[i]) - y[i];
+        return true;
+    };
+    return p;
+}
+
+}  // namespace
+
 class TstFitEngine : public QObject {
     Q_OBJECT
 private slots:
@@ -22,13 +38,7 @@ private slots:
             t.push_back(i * 0.01);
             y.push_back(aTrue * std::exp(-bTrue * t.back()) + noise(rng));
         }
-        FitProblem p;
-        p.parameters = {{"a", 1.0, 0.1, 10.0, true, ParamScale::Linear}, {"b", 1.0, 0.01, 100.0, true, ParamScale::Log}};
-        p.residualCount = t.size();
-        p.residuals = [&](const std::vector<double>& v, std::vector<double>& r) {
-            for (size_t i = 0; i < t.size(); ++i) r[i] = v[0] * std::exp(-v[1] * t[i]) - y[i];
-            return true;
-        };
+        FitProblem p = exponentialDecayFit(t, y);
         p.multistarts = 3;
         const FitResult res = fitLeastSquares(p);
         QVERIFY2(res.ok(), res.message.c_str());
@@ -133,13 +143,8 @@ private slots:
             t.push_back(i * 0.02);
             y.push_back(2.0 * std::exp(-3.0 * t.back()) + 0.01 * std::sin(17.0 * i));
         }
-        auto model = [&](const std::vector<double>& v, std::vector<double>& r) {
-            for (size_t i = 0; i < t.size(); ++i) r[i] = v[0] * std::exp(-v[1] * t[i]) - y[i];
-            return true;
-        };
-        FitProblem p;
-        p.parameters = {{"a", 1.0, 0.1, 10.0, true, ParamScale::Linear}, {"b", 1.0, 0.01, 100.0, true, ParamScale::Log}};
-        p.residualCount = t.size();
+        FitProblem p = exponentialDecayFit(t, y);
+        const auto model = p.residuals;
         long calls = 0;
         p.residuals = [&](const std::vector<double>& v, std::vector<double>& r) { ++calls; return model(v, r); };
         p.multistarts = 2;
@@ -175,13 +180,7 @@ private slots:
             t.push_back(i * 0.02);
             y.push_back(2.0 * std::exp(-3.0 * t.back()) + 0.01 * std::sin(17.0 * i));
         }
-        FitProblem p;
-        p.parameters = {{"a", 1.0, 0.1, 10.0, true, ParamScale::Linear}, {"b", 1.0, 0.01, 100.0, true, ParamScale::Log}};
-        p.residualCount = t.size();
-        p.residuals = [&](const std::vector<double>& v, std::vector<double>& r) {
-            for (size_t i = 0; i < t.size(); ++i) r[i] = v[0] * std::exp(-v[1] * t[i]) - y[i];
-            return true;
-        };
+        FitProblem p = exponentialDecayFit(t, y);
         p.multistarts = 5;
         const FitResult all = fitLeastSquares(p);
         QVERIFY(all.ok());

@@ -1,6 +1,7 @@
 // The identify loop, blind, on data with one contact or output effect switched on.
 #include <QtTest/QtTest>
 
+#include "identify_checks.hpp"
 #include "identify_synth.hpp"
 
 using namespace stickslip::identify;
@@ -24,15 +25,7 @@ void expectFound(const ExtendedModel& truth, unsigned seed, const std::string& n
     QVERIFY(r.after.validationNrmse < 0.8 * r.before.validationNrmse);
     QVERIFY(!r.effectsAdded.front().pointedBy.empty());
     // The selection's held-out and size tests were made and passed (4 runs: 3 degrees of freedom).
-    for (const CandidateScore& c : r.candidates) {
-        if (!c.accepted) continue;
-        QCOMPARE(c.heldOutUnits, 4);
-        QVERIFY2(c.heldOutP >= 0 && c.heldOutP < 0.05, qPrintable(QString("paired p %1").arg(c.heldOutP)));
-        QVERIFY(c.sizeStderr > 0 && std::abs(c.sizeCritical - 3.182446) < 1e-4);
-        QVERIFY(std::abs(c.sizeValue - c.sizeNull) > c.sizeCritical * c.sizeStderr);
-        qInfo("%s: paired t %.2f p %.2g, size %.4g jackknife s.e. %.3g", c.name.c_str(), c.heldOutT, c.heldOutP, c.sizeValue,
-              c.sizeStderr);
-    }
+    synth::verifyAcceptedPassedSelection(r, 4, 3.182446);
 }
 
 }  // namespace

@@ -73,6 +73,29 @@ IdentifyOptions options(DynamicsResidual how) {
 class TestIdentifyDynamics : public QObject {
     Q_OBJECT
 private slots:
+    // A rig damped far above the nominal ζ (viscous_damping on, ζ = 0.08), equation-error
+    // residual: the loop names viscous_damping with ζ near the truth and adds nothing else.
+    void viscousDampingIsNamedOnRigData() {
+        ExtendedModel truth;
+        truth.law.mu = 0.30; truth.law.C1 = 0.20; truth.law.eta_s_per_m = 0.8; truth.law.vc_mps = 0.1;
+        truth.effects.viscousDamping = ViscousDamping{0.08};
+        const auto runs = makeDynamicsRuns(truth, 5);
+        QCOMPARE(runs.size(), size_t(2));
+        IdentifyOptions o = options(DynamicsResidual::EquationError);
+        o.candidates = {"viscous_damping", "sensor_inertia", "frictional_lag", "direction_asymmetry"};
+        o.maxEffects = 2;
+        const IdentifyResult r = identifyEffects(runs, o);
+        QVERIFY2(r.ok, r.message.c_str());
+        for (const auto& c : r.candidates)
+            qInfo("%s round %d: dBIC %.1f %s", c.name.c_str(), c.round, c.deltaBic, c.accepted ? "added" : c.reason.c_str());
+        QCOMPARE(r.effectsAdded.size(), size_t(1));
+        QCOMPARE(r.effectsAdded.front().name, std::string("viscous_damping"));
+        const double zeta = r.effectsAdded.front().params.at(0).value;
+        qInfo("zeta %.4f (true 0.08)", zeta);
+        QVERIFY(std::abs(zeta - 0.08) < 0.1 * 0.08);
+        QVERIFY(r.after.validationNrmse < r.before.validationNrmse);
+    }
+
     void backlashNeedsTheSegmentResidual() {
         ExtendedModel truth;
         truth.law.mu = 0.30; truth.law.C1 = 0.20; truth.law.eta_s_per_m = 0.8; truth.law.vc_mps = 0.1;

@@ -3,6 +3,7 @@
 // 'none', and cuts the held-out error.
 #include <QtTest/QtTest>
 
+#include "identify_checks.hpp"
 #include "identify_synth.hpp"
 
 using namespace stickslip::identify;
@@ -25,15 +26,7 @@ void expectFound(const IdentifyResult& r, const std::string& name) {
     QCOMPARE(j["effects_added"][0]["name"].get<std::string>(), name);
     QVERIFY(j["candidates"].size() >= 8);
     // The selection's held-out and size tests were made and passed (4 runs: 3 degrees of freedom).
-    for (const CandidateScore& c : r.candidates) {
-        if (!c.accepted) continue;
-        QCOMPARE(c.heldOutUnits, 4);
-        QVERIFY2(c.heldOutP >= 0 && c.heldOutP < 0.05, qPrintable(QString("paired p %1").arg(c.heldOutP)));
-        QVERIFY(c.sizeStderr > 0 && std::abs(c.sizeCritical - 3.182446) < 1e-4);
-        QVERIFY(std::abs(c.sizeValue - c.sizeNull) > c.sizeCritical * c.sizeStderr);
-        qInfo("%s: paired t %.2f p %.2g, size %.4g jackknife s.e. %.3g", c.name.c_str(), c.heldOutT, c.heldOutP, c.sizeValue,
-              c.sizeStderr);
-    }
+    synth::verifyAcceptedPassedSelection(r, 4, 3.182446);
     qInfo("%s: Ljung-Box p %.3g, structure ratio %.3f", name.c_str(), r.diagnosticsAfter.whiteness.pValue,
           r.diagnosticsAfter.whiteness.structureRatio);
 }

@@ -1,0 +1,28 @@
+// Checks shared by the identify tests on self-generated runs (Qt Test macros: call from a test
+// function, then `if (QTest::currentTestFailed()) return;`).
+#pragma once
+
+#include <QtTest/QtTest>
+
+#include <cmath>
+
+#include "core/identify/identify.hpp"
+
+namespace synth {
+
+// Every accepted candidate passed the selection's held-out and size tests, made over
+// `heldOutRuns` runs (t(K−1, 0.975) for the size test; 3.182446 for K = 4).
+inline void verifyAcceptedPassedSelection(const stickslip::identify::IdentifyResult& r, int heldOutRuns,
+                                          double tCritical) {
+    for (const stickslip::identify::CandidateScore& c : r.candidates) {
+        if (!c.accepted) continue;
+        QCOMPARE(c.heldOutUnits, heldOutRuns);
+        QVERIFY2(c.heldOutP >= 0 && c.heldOutP < 0.05, qPrintable(QString("paired p %1").arg(c.heldOutP)));
+        QVERIFY(c.sizeStderr > 0 && std::abs(c.sizeCritical - tCritical) < 1e-4);
+        QVERIFY(std::abs(c.sizeValue - c.sizeNull) > c.sizeCritical * c.sizeStderr);
+        qInfo("%s: paired t %.2f p %.2g, size %.4g jackknife s.e. %.3g", c.name.c_str(), c.heldOutT, c.heldOutP,
+              c.sizeValue, c.sizeStderr);
+    }
+}
+
+}  // namespace synth
