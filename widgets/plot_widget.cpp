@@ -226,7 +226,13 @@ void PlotWidget::applyFonts() {
 }
 
 // Autoscaling a (numerically) single point gives a range of 1e-10 with unreadable labels:
-// widen such an axis to ±0.1 % of its value (a periodic Poincaré section is one dot).
+// widen such an axis to ±1 % of its value (a periodic Poincaré section is one dot). ±0.1 %
+// needed five significant digits per label and the labels overlapped in a dock-sized plot.
+namespace {
+constexpr int kDefaultMajorTicks = 8;          // Qwt's default
+constexpr int kDegenerateAxisMajorTicks = 4;   // labels there carry ~5 significant digits
+}  // namespace
+
 void PlotWidget::widenDegenerateAxes() {
     QRectF box;
     bool any = false;
@@ -235,13 +241,15 @@ void PlotWidget::widenDegenerateAxes() {
         box = any ? box.united(c->boundingRect()) : c->boundingRect();
         any = true;
     }
+    for (int axis : {int(QwtPlot::xBottom), int(QwtPlot::yLeft)}) plot_->setAxisMaxMajor(axis, kDefaultMajorTicks);
     if (!any) return;
     auto widen = [this](int axis, double lo, double hi) {
         const double centre = 0.5 * (lo + hi);
         const double scale = std::max(std::abs(lo), std::abs(hi));
         if (hi - lo > 1e-6 * scale && hi - lo > 1e-300) return;
-        const double half = scale > 0 ? 1e-3 * scale : 1.0;
+        const double half = scale > 0 ? 1e-2 * scale : 1.0;
         plot_->setAxisScale(axis, centre - half, centre + half);
+        plot_->setAxisMaxMajor(axis, kDegenerateAxisMajorTicks);
     };
     widen(QwtPlot::xBottom, box.left(), box.right());
     widen(QwtPlot::yLeft, box.top(), box.bottom());

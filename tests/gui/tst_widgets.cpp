@@ -7,6 +7,8 @@
 #include <qwt_plot_picker.h>
 #include <qwt_plot_spectrogram.h>
 #include <qwt_plot_zoomer.h>
+#include <qwt_scale_draw.h>
+#include <qwt_scale_widget.h>
 #include <qwt_scale_engine.h>
 #include <qwt_scale_map.h>
 #include <qwt_symbol.h>
@@ -84,6 +86,7 @@ private slots:
     void measuredOverlayByColumnName();
     void navigationToolsExist();
     void phasePortraitAndPoincare();
+    void singlePointSectionHasReadableTickLabels();
     void loopOrientationMarksClockwise();
     void loopOrientationMarksCounterClockwise();
     void rateStateLoopsAreClockwise();
@@ -223,6 +226,31 @@ void TestWidgets::navigationToolsExist() {
     const QRectF data = w.curve("rate-state: slider x")->boundingRect();
     QVERIFY(base.left() <= data.left() + 1e-9 && base.right() >= data.right() - 1e-9);
     QVERIFY(base.top() <= data.top() + 1e-9 && base.bottom() >= data.bottom() - 1e-9);
+}
+
+// A periodic run's section is one dot (Fig. 22 set at A = 0.4 mm: x ≈ 0.0711 mm). The axes
+// around it must carry tick labels that fit side by side in a dock-sized plot.
+void TestWidgets::singlePointSectionHasReadableTickLabels() {
+    PoincarePlot poincare;
+    poincare.resize(380, 300);
+    poincare.show();
+    poincare.setSection(std::vector<double>(50, 7.10512e-5), std::vector<double>(50, 4.76591e-3), LawKind::RateState);
+    QwtPlot* plot = poincare.plot();
+    plot->replot();
+    QCoreApplication::processEvents();
+    for (int axis : {int(QwtPlot::xBottom), int(QwtPlot::yLeft)}) {
+        const QList<double> ticks = plot->axisScaleDiv(axis).ticks(QwtScaleDiv::MajorTick);
+        QVERIFY(ticks.size() >= 2);
+        const QFont font = plot->axisWidget(axis)->font();
+        double labels = 0;
+        for (double v : ticks) {
+            const QSizeF sz = plot->axisScaleDraw(axis)->label(v).textSize(font);
+            labels += axis == QwtPlot::xBottom ? sz.width() : sz.height();
+        }
+        const double room = axis == QwtPlot::xBottom ? plot->canvas()->width() : plot->canvas()->height();
+        QVERIFY2(labels < 0.8 * room, qPrintable(QString("axis %1: %2 tick labels need %3 px of %4")
+                                                      .arg(axis).arg(ticks.size()).arg(labels).arg(room)));
+    }
 }
 
 void TestWidgets::phasePortraitAndPoincare() {
