@@ -28,7 +28,8 @@ double sosMagnitude(const Sos& sos, double f_Hz, double sampleRate_Hz);
 // Causal filtering with the steady-state initial conditions of x[0].
 std::vector<double> sosFilter(const Sos& sos, const std::vector<double>& x);
 // Zero-phase filtering: forward, then backward, with odd-reflection padding at both ends
-// (as scipy.signal.sosfiltfilt); the magnitude response is |H|².
+// (as scipy.signal.sosfiltfilt, but padlen = impulseResponseLength(sos) instead of scipy's
+// 3·(2·sections + 1), capped at n − 1); the magnitude response is |H|².
 std::vector<double> filtfilt(const Sos& sos, const std::vector<double>& x);
 // Samples after which the causal impulse response of sos stays below `tolerance` of its peak
 // (0 for an empty cascade; at most 2^20).
@@ -36,7 +37,8 @@ size_t impulseResponseLength(const Sos& sos, double tolerance = 1e-6);
 // Zero-phase filtering of x as if it were continued by zeros on both sides (a signal that is
 // non-zero only on a short stretch, e.g. a prediction-minus-measurement over one shooting
 // segment): filtfilt of x padded with `margin` zeros at each end (0: impulseResponseLength),
-// returned on x's samples. Linear in x.
+// returned on x's samples, except that the odd reflection beyond the zeros is scipy's short
+// 3·(2·sections + 1) samples (the margins already hold the filter's memory). Linear in x.
 std::vector<double> filtfiltZeroExtended(const Sos& sos, const std::vector<double>& x, size_t margin = 0);
 
 // Savitzky–Golay: least-squares polynomial of `polyOrder` over 2·halfWindow+1 samples at
