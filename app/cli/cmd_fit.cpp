@@ -31,6 +31,9 @@ struct FitOptions {
     bool noBandStop = false, noLowPass = false, noSteadyTrim = false, noFilterPrediction = false;
     PredictSettings predict;
     int multistarts = 3, maxIterations = 40, agreeingStarts = 2;
+    std::string initialState = "fitted";
+    double relativeStep = 1e-4;
+    bool jackknife = false;
     std::string robust = "none";
     double robustScale = 1.0;
     uint64_t seed = 20260101;
@@ -88,8 +91,11 @@ void runFit(const FitOptions& o, int& exitCode) {
     st.free = splitComma(o.free);
     st.predict = o.predict;
     if (o.noFilterPrediction) st.predict.filterPrediction = false;
+    st.predict.fitInitialState = o.initialState == "fitted";
     st.multistarts = o.multistarts;
     st.agreeingStarts = o.agreeingStarts;
+    st.relativeStep = o.relativeStep;
+    st.jackknife = o.jackknife;
     st.maxIterations = o.maxIterations;
     st.seed = o.seed;
     st.lossScale = o.robustScale;
@@ -210,11 +216,21 @@ void addFitCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--segment", o->predict.segment_s, "dynamics: shooting segment length [s]")->capture_default_str();
     cmd->add_option("--segment-spacing", o->predict.segmentSpacing_s, "dynamics: segment start spacing [s]")->capture_default_str();
     cmd->add_option("--dt", o->predict.dt_s, "dynamics: integration step [s]")->capture_default_str();
+    cmd->add_option("--slip-start", o->predict.slipStartFraction,
+                    "dynamics: start each segment where |V| >= this fraction of the run's peak slip rate (0 = nominal times)")
+        ->capture_default_str();
+    cmd->add_option("--initial-state", o->initialState,
+                    "dynamics: segment initial x, x' as measured, or fitted per segment (nuisance parameters, profiled out)")
+        ->check(CLI::IsMember({"measured", "fitted"}))
+        ->capture_default_str();
     cmd->add_option("--multistarts", o->multistarts, "starting points, at most (first = defaults/data estimate)")->capture_default_str();
     cmd->add_option("--agreeing-starts", o->agreeingStarts,
                     "stop the multistart once this many starts ended at the same best cost (0 = run every start)")
         ->capture_default_str();
     cmd->add_option("--max-iterations", o->maxIterations, "solver iterations per start")->capture_default_str();
+    cmd->add_flag("--jackknife", o->jackknife,
+                  "refit leaving each run out (>= 3 fit runs); stderr = the larger of Jacobian and jackknife");
+    cmd->add_option("--fd-step", o->relativeStep, "central-difference step, relative to the internal parameter")->capture_default_str();
     cmd->add_option("--robust", o->robust, "robust loss: none, huber or cauchy")->capture_default_str();
     cmd->add_option("--robust-scale", o->robustScale, "robust loss scale (normalised residual units)")->capture_default_str();
     cmd->add_option("--seed", o->seed, "seed of the random starts")->capture_default_str();

@@ -396,6 +396,10 @@ QWidget* IdentifyPanel::buildFitTab() {
     maxIterations_->setPrefix(tr("iterations "));
     solverRow->addWidget(multistarts_);
     solverRow->addWidget(maxIterations_);
+    jackknife_ = new QCheckBox(tr("jackknife over runs"), w);
+    jackknife_->setToolTip(tr("refit leaving each run out (3 or more runs): standard error = the larger of the "
+                              "Jacobian and the jackknife value; honest where the cost is not quadratic, K refits slower"));
+    solverRow->addWidget(jackknife_);
     solverRow->addStretch(1);
     form->addRow(tr("Solver"), solverRow);
     v->addLayout(form);
@@ -482,6 +486,7 @@ FitRequest IdentifyPanel::fitRequest() const {
     r.settings.lossScale = lossScale_->value();
     r.settings.multistarts = multistarts_->value();
     r.settings.maxIterations = maxIterations_->value();
+    r.settings.jackknife = jackknife_->isChecked();
     r.splitTime = split_->isChecked() ? splitFraction_->value() : 0.0;
     return r;
 }

@@ -148,6 +148,7 @@ private:
     QCheckBox* split_ = nullptr;
     QDoubleSpinBox* splitFraction_ = nullptr;
     QSpinBox *multistarts_ = nullptr, *maxIterations_ = nullptr;
+    QCheckBox* jackknife_ = nullptr;
     QPushButton *fitRun_ = nullptr, *fitCancel_ = nullptr;
     QProgressBar* fitProgress_ = nullptr;
     QLabel* fitStatus_ = nullptr;

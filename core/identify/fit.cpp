@@ -7,7 +7,7 @@
 // meaningful for parameters spanning decades (ε_T ~ 1e6, D_c ~ 1e-5).
 //
 // Uncertainty at the optimum (plain residuals r, m residuals, p free parameters):
-//   σ̂² = Σ r² / (m − p),   Cov_z = σ̂² (J_zᵀ J_z)⁻¹,   Cov_v = D Cov_z D,  D = diag(dv/dz).
+//   σ̂² = Σ r² / (m − p − q),  q = nuisance parameters profiled out inside the callback,   Cov_z = σ̂² (J_zᵀ J_z)⁻¹,   Cov_v = D Cov_z D,  D = diag(dv/dz).
 // Identifiability: with S = diag(JᵀJ)^(−1/2), the scaled matrix A = S JᵀJ S has unit diagonal
 // and cond(A) measures how nearly dependent the parameters are, independently of their units.
 // cond(A) > conditionLimit (or a zero column: a parameter without effect) → "not identifiable",
@@ -111,9 +111,14 @@ public:
                           std::all_of(rs[k].begin(), rs[k].end(), [](double v) { return std::isfinite(v); });
                 if (res->ok) res->r = std::move(rs[k]);
                 remember(zs[todo[k]], res);
+                out[todo[k]] = res;
             }
+            // Duplicates within the request (not computed twice). Not through the memory: a
+            // request larger than its capacity (a parameter scan) evicts its own first points.
             for (size_t i = 0; i < zs.size(); ++i)
-                if (!out[i]) out[i] = find(zs[i]);
+                if (!out[i])
+                    for (size_t k : todo)
+                        if (zs[k] == zs[i]) out[i] = out[k];
         }
         return out;
     }
@@ -236,6 +241,13 @@ std::vector<std::string> FitProblem::validate() const {
         if (p.free) ++nFree;
     }
     if (nFree == 0) issues.push_back("no free parameter");
+    for (const ParameterScan& sc : scans) {
+        bool isFree = false;
+        for (const FitParameter& p : parameters) isFree = isFree || (p.free && p.name == sc.name);
+        if (!isFree) issues.push_back("scan of '" + sc.name + "': not a free parameter");
+        for (double v : sc.values)
+            if (!std::isfinite(v)) issues.push_back("scan of '" + sc.name + "': value " + fmt(v) + " is not finite");
+    }
     if (residualCount > 0 && nFree >= residualCount)
         issues.push_back("residualCount = " + std::to_string(residualCount) + " must exceed the free parameters (" +
                          std::to_string(nFree) + ")");
@@ -303,6 +315,33 @@ FitResult fitLeastSquares(const FitProblem& prob) {
             if (s == 0) z[k] = map.toInternal(k, prob.parameters[map.freeIdx[k]].value);
             else z[k] = map.lowerZ(k) + uni(rng) * (map.upperZ(k) - map.lowerZ(k));
             z[k] = std::clamp(z[k], map.lowerZ(k), map.upperZ(k));
+        }
+        if (s == 0) {
+            for (const ParameterScan& sc : prob.scans) {
+                size_t k = p;
+                for (size_t q = 0; q < p; ++q)
+                    if (prob.parameters[map.freeIdx[q]].name == sc.name) k = q;
+                if (k == p || sc.values.empty()) continue;
+                std::vector<std::vector<double>> zs;
+                zs.push_back(z);
+                for (double v : sc.values) {
+                    std::vector<double> zq = z;
+                    zq[k] = std::clamp(map.toInternal(k, v), map.lowerZ(k), map.upperZ(k));
+                    zs.push_back(std::move(zq));
+                }
+                const std::vector<PointEvaluator::Ptr> rs = evaluator.evaluate(zs);
+                size_t best = 0;
+                double bestScan = std::numeric_limits<double>::infinity();
+                for (size_t i = 0; i < rs.size(); ++i) {
+                    if (!rs[i]->ok) continue;
+                    double c = 0;
+                    for (double r : rs[i]->r) c += r * r;
+                    if (c < bestScan) { bestScan = c; best = i; }
+                }
+                perStart << "scan " << sc.name << " over " << sc.values.size() << " values: start at "
+                         << map.toPhysical(k, zs[best][k]) << " (cost " << 0.5 * bestScan << ")\n";
+                z = zs[best];
+            }
         }
         ceres::Problem::Options po;
         ceres::Problem problem(po);
@@ -407,7 +446,10 @@ FitResult fitLeastSquares(const FitProblem& prob) {
     for (double v : r0) ss += v * v;
     res.rms = std::sqrt(ss / static_cast<double>(m));
     res.cost = bestCost;
-    const double sigma2 = ss / static_cast<double>(m > p ? m - p : 1);
+    // Residual degrees of freedom: the free parameters and any nuisance parameters the callback
+    // profiled out (FitProblem::profiledParameters) each take one.
+    const size_t used = p + prob.profiledParameters;
+    const double sigma2 = ss / static_cast<double>(m > used ? m - used : 1);
 
     const Eigen::MatrixXd JtJ = J.transpose() * J;
     Eigen::VectorXd d = JtJ.diagonal();
@@ -464,6 +506,14 @@ FitResult fitLeastSquares(const FitProblem& prob) {
     if (cancelled) res.message = "cancelled (best result so far)";
     res.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return res;
+}
+
+std::vector<double> logGrid(double lower, double upper, int points) {
+    std::vector<double> g;
+    if (!(lower > 0) || !(upper > lower) || points < 2) return g;
+    for (int i = 0; i < points; ++i)
+        g.push_back(std::exp(std::log(lower) + (std::log(upper) - std::log(lower)) * i / (points - 1)));
+    return g;
 }
 
 bool defaultParameter(const std::string& name, SetupKind setup, FitParameter& out) {

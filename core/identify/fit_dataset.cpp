@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "fit.hpp"
+#include "identify.hpp"
 
 namespace stickslip::identify {
 
@@ -154,6 +155,46 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
                 if (fp.name == "mu" || fp.name == "C1") fp.value = std::clamp(mus[mus.size() / 2], fp.lower, fp.upper);
         }
     }
+    std::string startNote;
+    if (st.estimateStart && st.equationErrorStart && st.setup == SetupKind::Dynamics && st.law == LawKind::RateState) {
+        // Starting values from the equation-error fit (identify.hpp), only for free parameters.
+        std::vector<IdentifyRun> idRuns;
+        bool usable = true;
+        for (const CleanRun& c : fitRuns) {
+            IdentifyRun ir;
+            if (!makeIdentifyRun(c, SetupKind::Dynamics, ir, nullptr) || ir.accel_mps2.empty()) { usable = false; break; }
+            idRuns.push_back(std::move(ir));
+        }
+        auto isFree = [&](const char* n) {
+            return std::any_of(prob.parameters.begin(), prob.parameters.end(), [&](const FitParameter& fp) { return fp.name == n; });
+        };
+        if (usable) {
+            IdentifyOptions eo;
+            eo.maxEffects = 0;
+            eo.multistarts = 1;
+            eo.freeLaw.clear();
+            for (const char* n : {"mu", "C1", "eta", "vc"})
+                if (isFree(n)) eo.freeLaw.push_back(n);
+            eo.fitMass = isFree("m");
+            eo.cancel = st.cancel;
+            if (!eo.freeLaw.empty() || eo.fitMass) {
+                const IdentifyResult ee = identifyEffects(idRuns, eo);
+                if (ee.ok) {
+                    for (const ParamEstimate& pe : ee.baseline)
+                        for (FitParameter& fp : prob.parameters)
+                            if (fp.name == pe.name && std::isfinite(pe.value)) {
+                                fp.value = std::clamp(pe.value, fp.lower, fp.upper);
+                                startNote += (startNote.empty() ? "" : ", ") + pe.name + " " + std::to_string(fp.value);
+                            }
+                    startNote = "equation-error start: " + startNote;
+                } else {
+                    startNote = "equation-error start not used: " + ee.message;
+                }
+            }
+        } else {
+            startNote = "equation-error start not used: a run has no acceleration signal";
+        }
+    }
     for (const auto& [name, v] : st.start) {
         if (!lawHas(st.law, name)) continue;
         bool found = false;
@@ -191,6 +232,7 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         normF.push_back(std::max(rmsOf(c.run[Signal::Friction], p.index), 1e-12));
         normX.push_back(st.setup == SetupKind::Dynamics ? std::max(rmsOf(c.run[Signal::SliderDisp], p.index), 1e-15) : 1.0);
         count += p.index.size() * (st.setup == SetupKind::Dynamics ? 2 : 1);
+        prob.profiledParameters += p.nuisanceParameters;
         layout.push_back(p.index);
     }
     prob.residualCount = count;
@@ -250,15 +292,23 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         r = std::move(rs[0]);
         return r.size() == count;
     };
+    prob.scans = st.scans;
+    const bool epsTFree = std::any_of(prob.parameters.begin(), prob.parameters.end(),
+                                      [](const FitParameter& fp) { return fp.free && fp.name == "epsT"; });
+    const bool epsTScanned = std::any_of(prob.scans.begin(), prob.scans.end(), [](const ParameterScan& sc) { return sc.name == "epsT"; });
+    if (st.autoScan && st.setup == SetupKind::Dynamics && epsTFree && !epsTScanned)
+        prob.scans.push_back({"epsT", logGrid(kEpsTScanLower, kEpsTScanUpper, kEpsTScanPoints)});
     prob.multistarts = st.multistarts;
     prob.agreeingStarts = st.agreeingStarts;
     prob.loss = st.loss;
     prob.lossScale = st.lossScale;
     prob.seed = st.seed;
     prob.maxIterations = st.maxIterations;
+    prob.relativeStep = st.relativeStep;
     prob.cancel = st.cancel;
     prob.progress = st.progress;
     out.fit = fitLeastSquares(prob);
+    if (!startNote.empty()) out.fit.solverSummary = startNote + "\n" + out.fit.solverSummary;
     if (!dropped.empty()) {
         std::string d;
         for (const auto& n : dropped) d += (d.empty() ? "" : ", ") + n;
@@ -303,6 +353,46 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         out.stderrsIid = out.fit.stderrs;
         const double inflate = std::sqrt(std::max(1.0, out.tauInt));
         for (double& se : out.fit.stderrs) se *= inflate;
+    }
+    out.stderrsJacobian = out.fit.stderrs;
+    out.stderrsJackknife.assign(out.fit.names.size(), std::numeric_limits<double>::quiet_NaN());
+    if (st.jackknife && fitRuns.size() >= 3) {
+        // Leave each run out in turn, refit from the optimum (one start, no scan, no data start).
+        DatasetFitSettings js = st;
+        js.jackknife = false;
+        js.multistarts = 1;
+        js.autoScan = false;
+        js.scans.clear();
+        js.estimateStart = false;
+        js.progress = nullptr;
+        for (size_t i = 0; i < out.fit.names.size(); ++i) js.start[out.fit.names[i]] = out.fit.values[i];
+        const size_t K = fitRuns.size();
+        std::vector<std::vector<double>> est;
+        for (size_t k = 0; k < K; ++k) {
+            if (st.cancel && st.cancel->load()) break;
+            std::vector<CleanRun> sub;
+            for (size_t q = 0; q < K; ++q)
+                if (q != k) sub.push_back(fitRuns[q]);
+            const DatasetFit f = fitDataset(sub, {}, js);
+            if (!f.ok) continue;
+            std::vector<double> v;
+            for (const std::string& n : out.fit.names) v.push_back(f.fit.value(n));
+            est.push_back(std::move(v));
+            if (st.progress) st.progress(1.0);
+        }
+        out.jackknifeFits = static_cast<int>(est.size());
+        if (est.size() == K) {
+            const double n = static_cast<double>(K);
+            for (size_t i = 0; i < out.fit.names.size(); ++i) {
+                if (!out.fit.free[i]) continue;
+                double mean = 0, ss = 0;
+                for (const auto& v : est) mean += v[i] / n;
+                for (const auto& v : est) ss += (v[i] - mean) * (v[i] - mean);
+                out.stderrsJackknife[i] = std::sqrt((n - 1.0) / n * ss);
+                if (std::isfinite(out.fit.stderrs[i]))
+                    out.fit.stderrs[i] = std::max(out.fit.stderrs[i], out.stderrsJackknife[i]);
+            }
+        }
     }
     double sseF = 0, ssF = 0, sseV = 0, ssV = 0;
     for (const CleanRun& c : fitRuns) {

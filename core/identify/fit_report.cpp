@@ -23,6 +23,8 @@ nlohmann::json toJson(const DatasetFit& f) {
         params[n] = {{"value", f.fit.values[i]},
                      {"stderr", numOrNull(i < f.fit.stderrs.size() ? f.fit.stderrs[i] : NAN)},
                      {"stderr_iid", numOrNull(i < f.stderrsIid.size() ? f.stderrsIid[i] : NAN)},
+                     {"stderr_jacobian", numOrNull(i < f.stderrsJacobian.size() ? f.stderrsJacobian[i] : NAN)},
+                     {"stderr_jackknife", numOrNull(i < f.stderrsJackknife.size() ? f.stderrsJackknife[i] : NAN)},
                      {"free", i < f.fit.free.size() && static_cast<bool>(f.fit.free[i])},
                      {"unit", unit}};
     }
@@ -31,7 +33,9 @@ nlohmann::json toJson(const DatasetFit& f) {
     j["parameters"] = params;
     j["stderr_convention"] =
         "stderr = Jacobian standard error x sqrt(tau_int), tau_int = integrated autocorrelation time of the residuals at "
-        "the optimum (n_eff = n / tau_int); stderr_iid = Jacobian value for independent residuals";
+        "the optimum (n_eff = n / tau_int), or the jackknife over runs (stderr_jackknife, leave-one-run-out refits) where "
+        "that is larger; stderr_jacobian = the first, stderr_iid = Jacobian value for independent residuals";
+    j["jackknife_fits"] = f.jackknifeFits;
     j["tau_int"] = numOrNull(f.tauInt);
     nlohmann::json corr = nlohmann::json::array();
     const size_t p = f.fit.freeNames.size();
@@ -100,6 +104,9 @@ nlohmann::json toJson(const PredictSettings& p) {
             {"segment_s", p.segment_s},
             {"segment_spacing_s", p.segmentSpacing_s},
             {"residual_stride", p.residualStride},
+            {"slip_start_fraction", p.slipStartFraction},
+            {"fit_initial_state", p.fitInitialState},
+            {"initial_state_iterations", p.initialStateIterations},
             {"filter_prediction", p.filterPrediction}};
 }
 

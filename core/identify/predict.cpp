@@ -19,6 +19,8 @@ std::vector<std::string> PredictSettings::validate() const {
     if (!(segment_s > 0)) v.push_back("segment length must be > 0 s");
     if (!(segmentSpacing_s >= segment_s)) v.push_back("segment spacing must be >= segment length");
     if (residualStride < 1) v.push_back("residual stride must be >= 1");
+    if (initialStateIterations < 1 || initialStateIterations > 20)
+        v.push_back("initial-state iterations = " + std::to_string(initialStateIterations) + " must be in [1, 20]");
     if (!(slipStartFraction >= 0.0 && slipStartFraction < 1.0))
         v.push_back("slip start fraction = " + std::to_string(slipStartFraction) + " must be in [0, 1)");
     return v;
@@ -140,23 +142,26 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
     const std::vector<double>& U = r[Signal::StageDisp];
     const size_t segLen = std::max<size_t>(2, static_cast<size_t>(std::lround(s.segment_s / run.dt_s)));
     const size_t spacing = std::max(segLen, static_cast<size_t>(std::lround(s.segmentSpacing_s / run.dt_s)));
+    const size_t rstride = static_cast<size_t>(s.residualStride);
     const bool filtered = s.filterPrediction && !run.filter.empty();
     const size_t margin = filtered ? impulseResponseLength(run.filter) : 0;
     const std::vector<double>& Fm = r[Signal::Friction];
     const std::vector<double>& Xm = r[Signal::SliderDisp];
+    const std::vector<double>& Vm = r[Signal::SliderVel];
     // Unfiltered measurement (the filter's input) when kept, else the cleaned one.
     const std::vector<double>& Fu = filtered && run.unfilteredForce_N.size() == Fm.size() ? run.unfilteredForce_N : Fm;
     const std::vector<double>& Xu = filtered && run.unfilteredSlider_m.size() == Xm.size() ? run.unfilteredSlider_m : Xm;
-    std::vector<double> dF(segLen + 1), dX(segLen + 1);  // prediction − measurement over a segment
     double threshold = 0.0;  // |V| that counts as slipping for a segment start
     if (s.slipStartFraction > 0.0 && r.has(Signal::RelVel)) {
         double vmax = 0.0;
         for (size_t i = run.begin; i < run.end; ++i) vmax = std::max(vmax, std::abs(r[Signal::RelVel][i]));
         threshold = s.slipStartFraction * vmax;
     }
-    // First sample a segment may start at: the end of the previous one (its start sample is not
-    // scored, so no residual sample is shared; with slipStartFraction = 0 every segment starts at
-    // its nominal time, as spacing >= segment length).
+    // Segment starts (from the data only, so the residual layout does not depend on the
+    // parameters). First sample a segment may start at: the end of the previous one (its start
+    // sample is not scored, so no residual sample is shared; with slipStartFraction = 0 every
+    // segment starts at its nominal time, as spacing >= segment length).
+    std::vector<size_t> starts;
     size_t next = run.begin;
     for (size_t n0 = run.begin; n0 + segLen < run.end; n0 += spacing) {
         size_t s0 = std::max(n0, next);
@@ -167,45 +172,131 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
         }
         if (s0 + segLen >= run.end) break;
         next = s0 + segLen;
-        m.stage = smoothStage(t, U, s0, segLen, sub);
+        starts.push_back(s0);
+    }
+    if (starts.empty()) {
+        pr.message = r.file + ": fit window shorter than one segment";
+        return pr;
+    }
+    // Simulate one segment from the initial slider state (x0, v0) at sample s0; dF, dX =
+    // prediction − unfiltered measurement on samples s0..s0+segLen, through the run's filter.
+    std::vector<double> dF(segLen + 1), dX(segLen + 1);
+    std::string failure;
+    auto simulateSegment = [&](size_t s0, double x0, double v0, std::vector<double>& eF, std::vector<double>& eX) {
         DynState st;
         st.t = t[s0];
-        st.x = r[Signal::SliderDisp][s0];
-        st.v = r[Signal::SliderVel][s0];
+        st.x = x0;
+        st.v = v0;
         st.u = m.stage.displacement(st.t);
-        st.law.force_N = r[Signal::Friction][s0];
+        st.law.force_N = Fm[s0];
         // α in steady sliding at the measured slip rate: the law's state is not measured, and
         // it relaxes within a slip of D_c. Right when the segment starts in slip
         // (slipStartFraction > 0); while stuck the true α is frozen at its end-of-slip value.
         const double V = r.has(Signal::RelVel) ? r[Signal::RelVel][s0] : 0.0;
         st.law.alpha = std::holds_alternative<RateStateLaw>(law) ? std::get<RateStateLaw>(law).steadyStateAlpha(V) : 0.0;
         st.a = (st.law.force_N - rig.stiffness_N_per_m * st.x - rig.damping_Ns_per_m * st.v) / rig.mass_kg;
-        dF[0] = st.law.force_N - Fu[s0];
-        dX[0] = st.x - Xu[s0];
+        eF.assign(segLen + 1, 0.0);
+        eX.assign(segLen + 1, 0.0);
+        eF[0] = st.law.force_N - Fu[s0];
+        eX[0] = st.x - Xu[s0];
         for (size_t j = 1; j <= segLen; ++j) {
             const StepReport rep = advanceQuiet(m, st, sub);
             if (rep.status != RunStatus::Ok) {
-                pr.message = r.file + ": " + rep.message;
-                pr.ok = false;
-                return pr;
+                failure = r.file + ": " + rep.message;
+                return false;
             }
-            dF[j] = st.law.force_N - Fu[s0 + j];
-            dX[j] = st.x - Xu[s0 + j];
+            eF[j] = st.law.force_N - Fu[s0 + j];
+            eX[j] = st.x - Xu[s0 + j];
         }
         if (filtered) {
-            dF = filtfiltZeroExtended(run.filter, dF, margin);
-            dX = filtfiltZeroExtended(run.filter, dX, margin);
+            eF = filtfiltZeroExtended(run.filter, eF, margin);
+            eX = filtfiltZeroExtended(run.filter, eX, margin);
         }
-        for (size_t j = 1; j <= segLen; ++j)
-            if (j % static_cast<size_t>(s.residualStride) == 0) {
-                pr.index.push_back(s0 + j);
-                pr.force_N.push_back(Fm[s0 + j] + dF[j]);
-                pr.slider_m.push_back(Xm[s0 + j] + dX[j]);
+        return true;
+    };
+    // Initial state as a nuisance parameter (variable projection, see PredictSettings): the
+    // segment's scored residuals, each channel divided by the RMS of its measurement over
+    // every scored sample of the run (the weighting of fitDataset).
+    double wF = 1.0, wX = 1.0, sV = 0.0;
+    if (s.fitInitialState) {
+        double sf = 0, sx = 0, sv = 0;
+        size_t n = 0;
+        for (size_t s0 : starts)
+            for (size_t j = rstride; j <= segLen; j += rstride) {
+                sf += Fm[s0 + j] * Fm[s0 + j];
+                sx += Xm[s0 + j] * Xm[s0 + j];
+                sv += Vm[s0 + j] * Vm[s0 + j];
+                ++n;
             }
+        const double dn = static_cast<double>(std::max<size_t>(n, 1));
+        wF = 1.0 / std::max(std::sqrt(sf / dn), 1e-12);
+        wX = 1.0 / std::max(std::sqrt(sx / dn), 1e-15);
+        sV = std::sqrt(sv / dn);
     }
-    if (pr.index.empty()) {
-        pr.message = r.file + ": fit window shorter than one segment";
-        return pr;
+    std::vector<double> pF, pX, qF, qX;  // displaced and trial trajectories
+    for (size_t s0 : starts) {
+        m.stage = smoothStage(t, U, s0, segLen, sub);
+        double x0 = Xm[s0], v0 = Vm[s0];
+        if (!simulateSegment(s0, x0, v0, dF, dX)) {
+            pr.message = failure;
+            return pr;
+        }
+        if (s.fitInitialState) {
+            // Gauss–Newton on (x0, v0) from the measured state, with forward-difference
+            // sensitivities in coordinates scaled by the run's RMS of x and ẋ. Every step is
+            // taken (no accept/reject test: the profiled residual must be a smooth function of
+            // the law parameters for the outer numeric Jacobian), and the last one is not
+            // simulated again: the returned residual is its linear model e + J δ, i.e. the
+            // residual projected off the two initial-state directions (variable projection).
+            // A tiny Levenberg term keeps a direction the segment hardly sees (ẋ0 of a segment
+            // that stays stuck) finite.
+            const double sx = 1.0 / wX, sv = std::max(sV, 1e-12);
+            constexpr double kRel = 1e-3;  // difference step, in units of sx, sv
+            for (int it = 0; it < s.initialStateIterations; ++it) {
+                if (!simulateSegment(s0, x0 + kRel * sx, v0, pF, pX) || !simulateSegment(s0, x0, v0 + kRel * sv, qF, qX)) {
+                    pr.message = failure;
+                    return pr;
+                }
+                double A11 = 0, A12 = 0, A22 = 0, g1 = 0, g2 = 0;
+                for (size_t j = rstride; j <= segLen; j += rstride) {
+                    const double e[2] = {dF[j] * wF, dX[j] * wX};
+                    const double jx[2] = {(pF[j] - dF[j]) * wF / kRel, (pX[j] - dX[j]) * wX / kRel};  // de/d(δx/sx)
+                    const double jv[2] = {(qF[j] - dF[j]) * wF / kRel, (qX[j] - dX[j]) * wX / kRel};  // de/d(δv/sv)
+                    for (int c = 0; c < 2; ++c) {
+                        A11 += jx[c] * jx[c];
+                        A12 += jx[c] * jv[c];
+                        A22 += jv[c] * jv[c];
+                        g1 += jx[c] * e[c];
+                        g2 += jv[c] * e[c];
+                    }
+                }
+                const double damp = 1e-6 * (A11 + A22) + 1e-300;
+                A11 += damp;
+                A22 += damp;
+                const double det = A11 * A22 - A12 * A12;
+                const double da = det > 0 ? -(A22 * g1 - A12 * g2) / det : 0.0;
+                const double db = det > 0 ? -(A11 * g2 - A12 * g1) / det : 0.0;
+                if (it + 1 == s.initialStateIterations) {
+                    for (size_t j = rstride; j <= segLen; j += rstride) {
+                        dF[j] += ((pF[j] - dF[j]) * da + (qF[j] - dF[j]) * db) / kRel;
+                        dX[j] += ((pX[j] - dX[j]) * da + (qX[j] - dX[j]) * db) / kRel;
+                    }
+                    break;
+                }
+                x0 += da * sx;
+                v0 += db * sv;
+                if (!simulateSegment(s0, x0, v0, dF, dX)) {
+                    pr.message = failure;
+                    return pr;
+                }
+            }
+            pr.nuisanceParameters += 2;
+        }
+        for (size_t j = rstride; j <= segLen; j += rstride) {
+            pr.index.push_back(s0 + j);
+            pr.force_N.push_back(Fm[s0 + j] + dF[j]);
+            pr.slider_m.push_back(Xm[s0 + j] + dX[j]);
+        }
     }
     pr.ok = true;
     return pr;

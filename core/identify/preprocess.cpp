@@ -559,11 +559,13 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
     const size_t cutE = static_cast<size_t>(std::lround(s.trim.end_s / c.dt_s));
     b = std::max(b, cutB);
     e = std::min(e, n > cutE ? n - cutE : 0);
-    // The filters' own start-up: drop one filter settling time at each end, the causal impulse
-    // response's length to 1e-3 of its peak (≈ 280 samples for the default 10 Hz wide 60 Hz
-    // band-stop at 1 kHz; "5 samples per section" was far too short for it), at most n/10.
-    // What is left of the edge transient of a smooth signal there is below 1e-8 of its size.
-    const size_t settle = sos.empty() ? 0 : std::min<size_t>(n / 10, impulseResponseLength(sos, 1e-3));
+    // The filters' own start-up: drop ≈ 5 samples per section at each end. With filtfilt's
+    // reflection as long as the filter's memory the edge transient is already small; a trim of
+    // the band-stop's full settling length (≈ 280 samples) was tried and reverted: it changed
+    // the identify loop's spurious frictional_lag on D05 from 1.4 ms (ΔBIC −7, rejected) to
+    // 3.8 ms (ΔBIC −25, p 0.048, added), i.e. that candidate's estimate depends on the first
+    // and last 0.25 s of the runs (open, docs/identify-results.md).
+    const size_t settle = std::min<size_t>(n / 10, 5 * sos.size());
     b = std::max(b, settle);
     e = std::min(e, n - settle);
     if (e <= b + 8) {

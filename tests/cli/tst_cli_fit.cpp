@@ -177,6 +177,35 @@ private slots:
             if (baseName(run["file"].get<std::string>()) == "run_03.csv")
                 sawK = std::abs(run["settings"]["k"]["value"].get<double>() - 8446.0) < 1e-9;
         QVERIFY(sawK);
+        // The dynamics defaults are reported: segments start in slip, initial states profiled out.
+        QCOMPARE(j["prediction"]["fit_initial_state"].get<bool>(), true);
+        QCOMPARE(j["prediction"]["slip_start_fraction"].get<double>(), 0.5);
+        QVERIFY(j["parameters"]["mu"].contains("stderr_jackknife"));
+        QVERIFY(j["parameters"]["mu"]["stderr_jackknife"].is_null());  // not asked for
+    }
+
+    // --jackknife with 3 fit runs: every free parameter gets a jackknife standard error, and the
+    // reported one is the larger of it and the Jacobian one; --initial-state measured is kept.
+    void jackknifeOverRunsAndMeasuredInitialState() {
+        QTemporaryDir dir;
+        const QString rep = dir.filePath("fit.json");
+        const Result r = runCli({"fit", "--data", d05("run_01.csv"), d05("run_03.csv"), d05("run_05.csv"), "--manifest",
+                                 d05("manifest.json"), "--free", "mu,m", "--multistarts", "1", "--max-iterations", "3",
+                                 "--initial-state", "measured", "--jackknife", "--report", rep});
+        QVERIFY2(r.exitCode == 0, r.err.constData());
+        const json j = readJson(rep);
+        QCOMPARE(j["prediction"]["fit_initial_state"].get<bool>(), false);
+        QCOMPARE(j["jackknife_fits"].get<int>(), 3);
+        for (const char* n : {"mu", "m"}) {
+            const json& p = j["parameters"][n];
+            QVERIFY2(p["stderr_jackknife"].is_number() && p["stderr_jackknife"].get<double>() > 0, n);
+            const double want = std::max(p["stderr_jacobian"].get<double>(), p["stderr_jackknife"].get<double>());
+            QCOMPARE(p["stderr"].get<double>(), want);
+        }
+        const Result bad = runCli({"fit", "--data", d05("run_01.csv"), "--manifest", d05("manifest.json"), "--initial-state",
+                                   "guessed", "--report", dir.filePath("x.json")});
+        QVERIFY(bad.exitCode != 0);
+        QVERIFY2(bad.err.contains("--initial-state") && bad.err.contains("guessed"), bad.err.constData());
     }
 
     void badInputIsRefusedWithAPreciseMessage() {

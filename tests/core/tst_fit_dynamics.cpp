@@ -113,30 +113,26 @@ private slots:
 
     // The independent simulator's D05 runs (answer key: no hidden effect), cleaned with the
     // default filters (the prediction passes through the same filter), fitted in the dynamics
-    // set-up with C1 free (D05 has C1 != mu) and the rig's m and damping ratio free (with m, c
-    // held at the nominal 0.53 kg / zeta 0.005, mu, C1, eta, Dc and epsT all come out biased by
-    // 4-87 stderr). Every free parameter that is identifiable and not at a bound must lie
-    // within kFactor = 3 reported standard errors (the sqrt(tau_int)-inflated ones, fit.hpp) of
-    // the answer key, which is read only to check the result.
-    // D05 is this project's model plus noise: our simulator at the answer key reproduces the
-    // records to the noise (x 1.0e-5 m, F 0.06-0.076 N, acceleration 0.05 m/s^2 rms), so the
-    // biases come from the shooting segments, not from the model. Measured causes (Gauss-Newton
-    // steps from the key with one input at a time replaced by the noise-free truth):
-    //  1. alpha at segments that start while stuck: alpha is frozen at its end-of-slip value (no
-    //     healing), not 0, so the model breaks away too late: mu -3 % (-12..-21 stderr). With the
-    //     true alpha at the starts mu is within 0.6 stderr. Remedy: PredictSettings::
-    //     slipStartFraction (segments start in slip) - not used here, see 3.
-    //  2. the stage interpolated linearly between samples: its velocity jumps drive the stick mode
-    //     sqrt((k+epsT)/m) through epsT: m +4.4 stderr with every other input exact, -1.1 with the
-    //     cubic interpolation predictDynamics now uses.
-    //  3. errors in the measured initial x, x' (filtered x noise ~4 um, SG velocity error 1-3
-    //     mm/s, the stick ringing the 100 Hz low-pass cannot resolve): errors in variables that
-    //     bias epsT, m and zeta by 2-8 stderr in every segment placement tried; with the true x, x'
-    //     at slip starts every parameter is within 1.6 stderr. Not fixed (would need the initial
-    //     states as nuisance parameters). With slip starts the fit from the default start ended in
-    //     a local minimum (epsT 9.4e5), so this test keeps the nominal segment times.
+    // set-up with every law parameter and the rig's m* and damping ratio free, with the defaults
+    // of a user's fit: segments start in slip and their initial x, x' are profiled out
+    // (PredictSettings), mu, C1, eta, vc and m* start from the equation-error fit and epsT from a
+    // scan (DatasetFitSettings), and the standard errors are the larger of Jacobian x
+    // sqrt(tau_int) and the jackknife over the 4 fit runs. Every free parameter must lie within
+    // kFactor = 3 reported standard errors of the answer key, which is read only to check.
+    // What it took so far (docs/fit-results.md, measured):
+    //  - the measured initial state of a segment has errors (filtered x noise, the Savitzky-Golay
+    //    velocity, stick ringing above the low-pass) that bias epsT, m* and zeta by 2-8 stderr:
+    //    profiled out now;
+    //  - segments that start in stick get a wrong friction state alpha (mu -3 %): they start in
+    //    slip now;
+    //  - the cost has narrow valleys in epsT (the stick ringing's frequency): from epsT = 1e6 every
+    //    fit ended at 9e5-1e6 with cost 3.6-4.7, the key's valley has cost 0.97: the scan finds it;
+    //  - along the C1-eta-vc-Dc valley there are two minima (cost 0.9720 at C1 0.32-0.33 from the
+    //    equation-error start, 0.9739 near the key), 7-12 Jacobian stderrs but only chi2 = 11
+    //    apart: the Jacobian stderr is too small there, the jackknife is not.
     void recoversD05AnswerKeyWithinStandardErrors() {
         constexpr double kFactor = 3.0;
+        const std::set<std::string> kKnownBias = {"mu", "Dc"};
         const std::string dir = std::string(STICKSLIP_SHARED_DIR) + "/data/synthetic/";
         io::DatasetOptions opt;
         opt.manifestPath = dir + "D05/manifest.json";
@@ -162,6 +158,7 @@ private slots:
         st.law = LawKind::RateState;
         st.free = {"mu", "C1", "eta", "Dc", "vc", "epsT", "m", "zeta"};
         st.multistarts = 1;
+        st.jackknife = true;
         const DatasetFit f = fitDataset(runs, held, st);
         QVERIFY2(f.ok, f.message.c_str());
         qInfo("%s", f.fit.solverSummary.c_str());
@@ -176,13 +173,16 @@ private slots:
         QVERIFY(in.good());
         const nlohmann::json key = nlohmann::json::parse(in);
         QCOMPARE(key["effect"].get<std::string>(), std::string("none"));
-        // Still biased with this configuration (measured with the cubic stage, 40 iterations,
-        // NO_CONVERGENCE, cost 3.731: mu 0.26319 +- 0.00058 (-14.6), epsT 9.216e5 +- 3.7e3 (+147:
-        // runs off to push the model's stick ringing into the low-pass stop band, cause 3),
-        // Dc 7.7e-6 +- 4.1e-6 (-3.95), zeta 0.00686 +- 0.00055 (-4.4); m 0.51732 +- 0.00068 is
-        // now within 0.5 stderr (was +3.2), C1, eta, vc within 0.5).
-        const std::set<std::string> knownBias = {"mu", "epsT", "Dc", "zeta"};
-        int asserted = 0;
+        // Measured with this code (2026-11-22): 40 iterations, NO_CONVERGENCE, cost 1.035, fit /
+        // validation NRMSE 0.0180 / 0.0168; z (reported stderr = jackknife here for all eight):
+        // mu -3.63, C1 +2.27, eta +2.65, Dc -4.49, vc +2.76, epsT +1.65, m +1.14, zeta +1.44.
+        // mu and Dc are QEXPECT_FAIL: the estimate depends on where the solver enters the C1-eta-
+        // vc-Dc valley (the equation-error start moved from C1 0.31 to 1.40 when 0.25 s more was
+        // trimmed from each run end, and with that trim all eight were within 2.4 stderr, cost
+        // 0.972; docs/fit-results.md, session 4). Fixed = XPASS.
+        // Print every parameter first, then assert (a failure must not hide the others).
+        struct Check { std::string name; double z; bool atBound; double se; };
+        std::vector<Check> checks;
         for (const std::string& name : st.free) {
             const double truth = key["baseline_params"][name].get<double>();
             const double got = f.fit.value(name), se = f.fit.stderrOf(name);
@@ -190,23 +190,27 @@ private slots:
             if (name != "zeta") QVERIFY(defaultParameter(name, SetupKind::Dynamics, fp));
             const bool atBound = std::abs(got - fp.lower) < 1e-6 * (fp.upper - fp.lower) ||
                                  std::abs(fp.upper - got) < 1e-6 * (fp.upper - fp.lower);
-            double seIid = NAN;
-            for (size_t i = 0; i < f.fit.names.size() && i < f.stderrsIid.size(); ++i)
-                if (f.fit.names[i] == name) seIid = f.stderrsIid[i];
-            qInfo("%-5s = %.5g +- %.3g (iid %.3g), answer key %.5g: %.2f stderr%s", name.c_str(), got, se, seIid, truth,
-                  std::abs(got - truth) / se,
-                  atBound ? " (at a bound: not asserted)" : "");
-            if (atBound) continue;
-            QVERIFY(std::isfinite(se) && se > 0);
-            if (knownBias.count(name)) {
-                QEXPECT_FAIL("", qPrintable(QString::fromStdString("known bias of " + name + " (see the comment above)")), Continue);
-                QVERIFY2(std::abs(got - truth) <= kFactor * se, name.c_str());
-                continue;
-            }
-            QVERIFY2(std::abs(got - truth) <= kFactor * se, name.c_str());
+            double seIid = NAN, seJk = NAN;
+            for (size_t i = 0; i < f.fit.names.size(); ++i)
+                if (f.fit.names[i] == name) {
+                    if (i < f.stderrsIid.size()) seIid = f.stderrsIid[i];
+                    if (i < f.stderrsJackknife.size()) seJk = f.stderrsJackknife[i];
+                }
+            qInfo("%-5s = %.5g +- %.3g (iid %.3g, jackknife %.3g), answer key %.5g: %.2f stderr%s", name.c_str(), got, se,
+                  seIid, seJk, truth, (got - truth) / se, atBound ? " (at a bound: not asserted)" : "");
+            checks.push_back({name, (got - truth) / se, atBound, se});
+        }
+        int asserted = 0;
+        for (const Check& c : checks) {
+            if (c.atBound) continue;
+            QVERIFY(std::isfinite(c.se) && c.se > 0);
+            if (kKnownBias.count(c.name))
+                QEXPECT_FAIL("", qPrintable(QString::fromStdString("start-dependent minimum of " + c.name + " (see the comment above)")), Continue);
+            QVERIFY2(std::abs(c.z) <= kFactor, c.name.c_str());
             ++asserted;
         }
-        QVERIFY(asserted >= 4);
+        QCOMPARE(asserted, 8);
+        QCOMPARE(f.jackknifeFits, 4);
     }
 };
 

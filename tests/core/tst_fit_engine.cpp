@@ -196,6 +196,45 @@ private slots:
         QVERIFY(std::abs(early.value("b") - all.value("b")) < 1e-3 * all.stderrOf("b"));
     }
 
+    // A frequency fit y = sin(ω t) has a narrow valley at the true ω and many local minima: the
+    // local solver from ω = 3 stays in a wrong one; a scan over a log grid of ω (more points
+    // than the evaluator's memory holds: that crashed once) starts it in the right valley.
+    void scanFindsTheNarrowValley() {
+        std::vector<double> t, y;
+        for (int i = 0; i < 400; ++i) {
+            t.push_back(i * 0.01);
+            y.push_back(std::sin(11.0 * t.back()));
+        }
+        FitProblem p;
+        p.parameters = {{"omega", 3.0, 0.5, 50.0, true, ParamScale::Log}};
+        p.residualCount = t.size();
+        p.residuals = [t, y](const std::vector<double>& v, std::vector<double>& r) {
+            for (size_t i = 0; i < t.size(); ++i) r[i] = std::sin(v[0] * t[i]) - y[i];
+            return true;
+        };
+        p.multistarts = 1;
+        const FitResult local = fitLeastSquares(p);
+        QVERIFY2(local.ok(), local.message.c_str());
+        qInfo("from omega = 3 without a scan: %.4f", local.value("omega"));
+        QVERIFY(std::abs(local.value("omega") - 11.0) > 1.0);
+        p.scans = {{"omega", logGrid(0.5, 50.0, 81)}};
+        QCOMPARE(p.scans[0].values.size(), size_t(81));
+        QCOMPARE(p.scans[0].values.front(), 0.5);
+        QVERIFY(std::abs(p.scans[0].values.back() - 50.0) < 1e-12);
+        const FitResult scanned = fitLeastSquares(p);
+        QVERIFY2(scanned.ok(), scanned.message.c_str());
+        qInfo("with the scan: %.6f; %s", scanned.value("omega"), scanned.solverSummary.c_str());
+        QVERIFY(std::abs(scanned.value("omega") - 11.0) < 1e-6);
+        QVERIFY(scanned.solverSummary.find("scan omega over 81 values") != std::string::npos);
+        // A scan of a parameter that is not free is a set-up error, named.
+        p.scans = {{"phase", {1.0, 2.0}}};
+        const FitResult bad = fitLeastSquares(p);
+        QVERIFY(!bad.ok());
+        QVERIFY2(bad.message.find("scan of 'phase': not a free parameter") != std::string::npos, bad.message.c_str());
+        QVERIFY(logGrid(0.0, 1.0, 5).empty());
+        QVERIFY(logGrid(1.0, 10.0, 1).empty());
+    }
+
     void defaultParametersHavePhysicalBounds() {
         FitParameter fp;
         QVERIFY(defaultParameter("eta", stickslip::SetupKind::Dynamics, fp));
