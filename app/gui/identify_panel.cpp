@@ -396,12 +396,12 @@ QWidget* IdentifyPanel::buildFitTab() {
     maxIterations_->setPrefix(tr("iterations "));
     solverRow->addWidget(multistarts_);
     solverRow->addWidget(maxIterations_);
+    solverRow->addStretch(1);
+    form->addRow(tr("Solver"), solverRow);
     jackknife_ = new QCheckBox(tr("jackknife over runs"), w);
     jackknife_->setToolTip(tr("refit leaving each run out (3 or more runs): standard error = the larger of the "
                               "Jacobian and the jackknife value; honest where the cost is not quadratic, K refits slower"));
-    solverRow->addWidget(jackknife_);
-    solverRow->addStretch(1);
-    form->addRow(tr("Solver"), solverRow);
+    form->addRow(tr("Std. errors"), jackknife_);
     v->addLayout(form);
 
     auto* runRow = new QHBoxLayout;
