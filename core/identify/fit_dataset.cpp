@@ -382,13 +382,11 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         }
         out.jackknifeFits = static_cast<int>(est.size());
         if (est.size() == K) {
-            const double n = static_cast<double>(K);
             for (size_t i = 0; i < out.fit.names.size(); ++i) {
                 if (!out.fit.free[i]) continue;
-                double mean = 0, ss = 0;
-                for (const auto& v : est) mean += v[i] / n;
-                for (const auto& v : est) ss += (v[i] - mean) * (v[i] - mean);
-                out.stderrsJackknife[i] = std::sqrt((n - 1.0) / n * ss);
+                std::vector<double> column;
+                for (const auto& v : est) column.push_back(v[i]);
+                out.stderrsJackknife[i] = jackknifeStderr(column);
                 if (std::isfinite(out.fit.stderrs[i]))
                     out.fit.stderrs[i] = std::max(out.fit.stderrs[i], out.stderrsJackknife[i]);
             }
