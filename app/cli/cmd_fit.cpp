@@ -34,6 +34,7 @@ struct FitOptions {
     std::string initialState = "fitted";
     double relativeStep = 1e-4;
     bool jackknife = false;
+    std::string coordinates = "curve";
     std::string robust = "none";
     double robustScale = 1.0;
     uint64_t seed = 20260101;
@@ -96,6 +97,7 @@ void runFit(const FitOptions& o, int& exitCode) {
     st.agreeingStarts = o.agreeingStarts;
     st.relativeStep = o.relativeStep;
     st.jackknife = o.jackknife;
+    st.curveCoordinates = o.coordinates == "curve";
     st.maxIterations = o.maxIterations;
     st.seed = o.seed;
     st.lossScale = o.robustScale;
@@ -230,6 +232,11 @@ void addFitCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--max-iterations", o->maxIterations, "solver iterations per start")->capture_default_str();
     cmd->add_flag("--jackknife", o->jackknife,
                   "refit leaving each run out (>= 3 fit runs); stderr = the larger of Jacobian and jackknife");
+    cmd->add_option("--coordinates", o->coordinates,
+                    "dynamics, rate-state with C1, eta, vc free: solve in the steady-state curve's slope eta-C1/vc and curvature C1/vc^2 "
+                    "with vc (curve), or in C1, eta, vc (plain); reported in C1, eta, vc either way")
+        ->check(CLI::IsMember({"curve", "plain"}))
+        ->capture_default_str();
     cmd->add_option("--fd-step", o->relativeStep, "central-difference step, relative to the internal parameter")->capture_default_str();
     cmd->add_option("--robust", o->robust, "robust loss: none, huber or cauchy")->capture_default_str();
     cmd->add_option("--robust-scale", o->robustScale, "robust loss scale (normalised residual units)")->capture_default_str();

@@ -9,8 +9,11 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <string>
 #include <thread>
 
+#include "curve_coordinates.hpp"
 #include "fit.hpp"
 #include "identify.hpp"
 
@@ -210,11 +213,17 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
             prob.parameters.push_back(fp);
         }
     }
+    // Steady-state-curve coordinates (DatasetFitSettings::curveCoordinates): the entries of C1
+    // and η become κ = C1/v_c² and s = η − C1/v_c.
+    CurveCoordinates curve;
+    if (st.curveCoordinates && st.law == LawKind::RateState && st.setup == SetupKind::Dynamics)
+        curve = CurveCoordinates::install(prob.parameters, st.scans);
     auto specFor = [&](const std::vector<double>& vals) {
         ModelSpec m;
         m.law = st.law;
         m.tieC1ToMu = st.tieC1ToMu;
         for (size_t i = 0; i < prob.parameters.size(); ++i) m.values[prob.parameters[i].name] = vals[i];
+        if (curve.active()) curve.toLaw(vals, m.values);
         return m;
     };
     // Residual layout from one prediction at the start (indices do not depend on parameters).
@@ -253,10 +262,14 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         rs.resize(points.size());
         for (std::vector<double>& r : rs) r.assign(count, 0.0);
         std::vector<char> ok(nTasks, 0);
+        std::vector<char> inBounds(points.size(), 1);
+        for (size_t pt = 0; pt < points.size(); ++pt)
+            if (curve.active()) inBounds[pt] = curve.withinLawBounds(specs[pt].values) ? 1 : 0;
         std::atomic<size_t> next{0};
         auto work = [&]() {
             for (size_t t = next.fetch_add(1); t < nTasks; t = next.fetch_add(1)) {
                 const size_t pt = t / nRuns, k = t % nRuns;
+                if (!inBounds[pt]) continue;
                 const Prediction p = predictRun(fitRuns[k], st.setup, specs[pt], st.predict);
                 if (!p.ok || p.index.size() != layout[k].size()) continue;
                 const std::vector<double>& F = fitRuns[k].run[Signal::Friction];
@@ -298,6 +311,9 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
     const bool epsTScanned = std::any_of(prob.scans.begin(), prob.scans.end(), [](const ParameterScan& sc) { return sc.name == "epsT"; });
     if (st.autoScan && st.setup == SetupKind::Dynamics && epsTFree && !epsTScanned)
         prob.scans.push_back({"epsT", logGrid(kEpsTScanLower, kEpsTScanUpper, kEpsTScanPoints)});
+    const bool vcScanned = std::any_of(prob.scans.begin(), prob.scans.end(), [](const ParameterScan& sc) { return sc.name == "vc"; });
+    if (st.autoScan && curve.active() && !vcScanned)
+        prob.scans.push_back({"vc", logGrid(kVcScanLower, kVcScanUpper, kVcScanPoints)});
     prob.multistarts = st.multistarts;
     prob.agreeingStarts = st.agreeingStarts;
     prob.loss = st.loss;
@@ -306,7 +322,9 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
     prob.maxIterations = st.maxIterations;
     prob.relativeStep = st.relativeStep;
     prob.cancel = st.cancel;
-    prob.progress = st.progress;
+    // With the jackknife the main fit is the first of K + 1 equal parts of the progress.
+    const double parts = st.jackknife && fitRuns.size() >= 3 ? static_cast<double>(fitRuns.size() + 1) : 1.0;
+    if (st.progress) prob.progress = [&st, parts](double f) { st.progress(f / parts); };
     out.fit = fitLeastSquares(prob);
     if (!startNote.empty()) out.fit.solverSummary = startNote + "\n" + out.fit.solverSummary;
     if (!dropped.empty()) {
@@ -319,10 +337,12 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         return out;
     }
     out.model = specFor(out.fit.values);
+    const std::vector<double> internalOptimum = out.fit.values;  // what prob.residuals takes
+    if (curve.active()) curve.restore(out.fit);
     // Integrated autocorrelation time of the residuals at the optimum (see fit.hpp).
     {
         std::vector<double> r(count, 0.0);
-        if (prob.residuals(out.fit.values, r)) {
+        if (prob.residuals(internalOptimum, r)) {
             const size_t nc = st.setup == SetupKind::Dynamics ? 2 : 1;
             const size_t maxLag = 200;
             std::vector<double> acc(maxLag + 1, 0.0);
@@ -357,19 +377,14 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
     out.stderrsJacobian = out.fit.stderrs;
     out.stderrsJackknife.assign(out.fit.names.size(), std::numeric_limits<double>::quiet_NaN());
     if (st.jackknife && fitRuns.size() >= 3) {
-        // Leave each run out in turn, refit from the optimum (one start, no scan, no data start).
+        // Leave each run out in turn and repeat the whole procedure on the rest (see fit.hpp).
         DatasetFitSettings js = st;
         js.jackknife = false;
-        js.multistarts = 1;
-        js.autoScan = false;
-        js.scans.clear();
-        js.estimateStart = false;
-        js.progress = nullptr;
-        for (size_t i = 0; i < out.fit.names.size(); ++i) js.start[out.fit.names[i]] = out.fit.values[i];
         const size_t K = fitRuns.size();
         std::vector<std::vector<double>> est;
         for (size_t k = 0; k < K; ++k) {
             if (st.cancel && st.cancel->load()) break;
+            if (st.progress) js.progress = [&st, k, parts](double f) { st.progress((static_cast<double>(k + 1) + f) / parts); };
             std::vector<CleanRun> sub;
             for (size_t q = 0; q < K; ++q)
                 if (q != k) sub.push_back(fitRuns[q]);
@@ -378,7 +393,6 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
             std::vector<double> v;
             for (const std::string& n : out.fit.names) v.push_back(f.fit.value(n));
             est.push_back(std::move(v));
-            if (st.progress) st.progress(1.0);
         }
         out.jackknifeFits = static_cast<int>(est.size());
         if (est.size() == K) {

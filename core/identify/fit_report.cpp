@@ -34,7 +34,9 @@ nlohmann::json toJson(const DatasetFit& f) {
     j["stderr_convention"] =
         "stderr = Jacobian standard error x sqrt(tau_int), tau_int = integrated autocorrelation time of the residuals at "
         "the optimum (n_eff = n / tau_int), or the jackknife over runs (stderr_jackknife, leave-one-run-out refits) where "
-        "that is larger; stderr_jacobian = the first, stderr_iid = Jacobian value for independent residuals";
+        "that is larger; stderr_jacobian = the first, stderr_iid = Jacobian value for independent residuals. The "
+        "Jacobian value assumes one quadratic minimum; where the cost has several (the dynamics fit of C1, eta, vc: on "
+        "the synthetic D05 5-15 Jacobian standard errors apart) only the jackknife is honest";
     j["jackknife_fits"] = f.jackknifeFits;
     j["tau_int"] = numOrNull(f.tauInt);
     nlohmann::json corr = nlohmann::json::array();

@@ -206,6 +206,10 @@ private slots:
                                    "guessed", "--report", dir.filePath("x.json")});
         QVERIFY(bad.exitCode != 0);
         QVERIFY2(bad.err.contains("--initial-state") && bad.err.contains("guessed"), bad.err.constData());
+        const Result badCoords = runCli({"fit", "--data", d05("run_01.csv"), "--manifest", d05("manifest.json"), "--coordinates",
+                                         "polar", "--report", dir.filePath("y.json")});
+        QVERIFY(badCoords.exitCode != 0);
+        QVERIFY2(badCoords.err.contains("--coordinates") && badCoords.err.contains("polar"), badCoords.err.constData());
     }
 
     void badInputIsRefusedWithAPreciseMessage() {

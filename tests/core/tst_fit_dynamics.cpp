@@ -7,7 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
-#include <set>
+#include <map>
 
 #include "core/identify/fit.hpp"
 #include "core/integrate/simulate.hpp"
@@ -111,6 +111,68 @@ private slots:
         QVERIFY(c.validationNrmse > f.validationNrmse);
     }
 
+    // DatasetFitSettings::curveCoordinates changes the solver's coordinates only: with C1, eta
+    // and vc free, a fit in (kappa = C1/vc^2, s = eta - C1/vc, vc) started at the optimum of the
+    // fit in (C1, eta, vc) stays there, and reports the same values, standard errors (delta
+    // method) and correlations. (From the same distant start the two may end in different
+    // minima: measured plain 0.8658, curve 0.8663, chi2 0.34 apart but mu 1.1 stderr apart; the
+    // cost is not quadratic at that scale.) The standard errors agree only to a factor 1.5: the
+    // problem is ill-conditioned along the C1-eta-vc valley, where the numeric Jacobian's small
+    // errors decide (JtJ)^-1 (measured at the same optimum with difference step 1e-5: mu
+    // 0.00119 plain vs 0.00084 curve, vc 0.0152 vs 0.0113; with 1e-4: mu -24 %, C1 +26 %, eta
+    // +27 %; correlations differ by up to 0.88, mu-vc -0.43 plain vs +0.45 curve, the curve one
+    // matching the valley, in which C1, eta, vc rise together). The numeric Jacobian depends on
+    // its step here (with the same coordinates, steps 1e-4 and 1e-5 give stderrs 20-30 % apart):
+    // probably because the residuals are only piecewise smooth (a stick-slip transition that
+    // moves across a time step boundary makes a kink; not verified). Hence no assertion on correlations; the map and the delta method themselves
+    // are checked exactly in tst_fit_engine.
+    void curveCoordinatesChangeOnlyTheSolverCoordinates() {
+        std::vector<CleanRun> runs = {measured(truth(1.0e-3), 11), measured(truth(2.0e-3), 12)};
+        DatasetFitSettings st;
+        st.setup = SetupKind::Dynamics;
+        st.law = LawKind::RateState;
+        st.free = {"mu", "C1", "eta", "vc"};
+        st.start = {{"Dc", 20e-6}, {"epsT", 1e5}, {"mu", 0.24}, {"C1", 0.3}, {"eta", 0.7}, {"vc", 0.12}};
+        st.estimateStart = false;
+        st.autoScan = false;
+        st.predict.dt_s = 1.0 / 30000.0;
+        st.predict.segment_s = 0.05;
+        st.predict.segmentSpacing_s = 0.2;
+        st.multistarts = 1;
+        st.maxIterations = 100;
+        st.curveCoordinates = false;
+        const DatasetFit plain = fitDataset(runs, {}, st);
+        QVERIFY2(plain.ok, plain.message.c_str());
+        qInfo("plain: %s", plain.fit.solverSummary.c_str());
+        QVERIFY(plain.fit.converged);
+        QVERIFY(plain.fit.solverSummary.find("steady-state curve") == std::string::npos);
+        for (const std::string& n : st.free) st.start[n] = plain.fit.value(n);
+        st.curveCoordinates = true;
+        const DatasetFit curve = fitDataset(runs, {}, st);
+        QVERIFY2(curve.ok, curve.message.c_str());
+        qInfo("curve: %s", curve.fit.solverSummary.c_str());
+        QVERIFY(curve.fit.solverSummary.find("steady-state curve") != std::string::npos);
+        QCOMPARE(curve.fit.names, plain.fit.names);
+        QCOMPARE(curve.fit.freeNames, plain.fit.freeNames);
+        const double sigma2 = 2.0 * plain.fit.cost / static_cast<double>(plain.fit.residualCount);
+        const double chi2 = 2.0 * (plain.fit.cost - curve.fit.cost) / sigma2;
+        qInfo("cost plain %.8g, curve from there %.8g: chi2 lower by %.3g", plain.fit.cost, curve.fit.cost, chi2);
+        for (const std::string& n : st.free)
+            qInfo("%-4s plain %.6g +- %.3g, curve %.6g +- %.3g", n.c_str(), plain.fit.value(n), plain.fit.stderrOf(n),
+                  curve.fit.value(n), curve.fit.stderrOf(n));
+        // Not worse, and at most a small step further down (the plain solver stops by its function
+        // tolerance; measured: curve 0.016 lower in chi2).
+        QVERIFY(chi2 > -0.01 && chi2 < 0.1);
+        for (const std::string& n : st.free) {
+            const double a = plain.fit.value(n), b = curve.fit.value(n);
+            const double sa = plain.fit.stderrOf(n), sb = curve.fit.stderrOf(n);
+            QVERIFY(sa > 0 && sb > 0);
+            QVERIFY2(std::abs(a - b) < 0.3 * sa, n.c_str());
+            QVERIFY2(std::abs(std::log(sb / sa)) < std::log(1.5), n.c_str());
+        }
+        QCOMPARE(curve.fit.correlation.size(), plain.fit.correlation.size());
+    }
+
     // The independent simulator's D05 runs (answer key: no hidden effect), cleaned with the
     // default filters (the prediction passes through the same filter), fitted in the dynamics
     // set-up with every law parameter and the rig's m* and damping ratio free, with the defaults
@@ -127,12 +189,18 @@ private slots:
     //    slip now;
     //  - the cost has narrow valleys in epsT (the stick ringing's frequency): from epsT = 1e6 every
     //    fit ended at 9e5-1e6 with cost 3.6-4.7, the key's valley has cost 0.97: the scan finds it;
-    //  - along the C1-eta-vc-Dc valley there are two minima (cost 0.9720 at C1 0.32-0.33 from the
-    //    equation-error start, 0.9739 near the key), 7-12 Jacobian stderrs but only chi2 = 11
-    //    apart: the Jacobian stderr is too small there, the jackknife is not.
+    //  - the C1-eta-vc valley is curved: the solver works in the steady-state curve's slope,
+    //    curvature and vc (DatasetFitSettings::curveCoordinates; 22-31 iterations instead of 40+
+    //    without convergence), vc scanned first;
+    //  - the cost has several minima along that valley (measured 1.0096-1.0140 from different
+    //    starts, at C1 0.26-0.75), 5-15 Jacobian stderrs apart; the jackknife repeats the whole
+    //    procedure on each 3-run subset, so its spread includes which minimum a fit finds.
+    // The reported errors must also say something: relative stderr below kMaxRelative for the
+    // parameters the data do determine (mu, epsT, m*: < 2 %, zeta < 25 %, Dc < 100 %); C1, eta
+    // and vc individually are not determined (only the curve's slope and curvature are).
     void recoversD05AnswerKeyWithinStandardErrors() {
         constexpr double kFactor = 3.0;
-        const std::set<std::string> kKnownBias = {"mu", "Dc"};
+        const std::map<std::string, double> kMaxRelative = {{"mu", 0.02}, {"epsT", 0.02}, {"m", 0.02}, {"zeta", 0.25}, {"Dc", 1.0}};
         const std::string dir = std::string(STICKSLIP_SHARED_DIR) + "/data/synthetic/";
         io::DatasetOptions opt;
         opt.manifestPath = dir + "D05/manifest.json";
@@ -173,13 +241,11 @@ private slots:
         QVERIFY(in.good());
         const nlohmann::json key = nlohmann::json::parse(in);
         QCOMPARE(key["effect"].get<std::string>(), std::string("none"));
-        // Measured with this code (2026-11-22): 40 iterations, NO_CONVERGENCE, cost 1.035, fit /
-        // validation NRMSE 0.0180 / 0.0168; z (reported stderr = jackknife here for all eight):
-        // mu -3.63, C1 +2.27, eta +2.65, Dc -4.49, vc +2.76, epsT +1.65, m +1.14, zeta +1.44.
-        // mu and Dc are QEXPECT_FAIL: the estimate depends on where the solver enters the C1-eta-
-        // vc-Dc valley (the equation-error start moved from C1 0.31 to 1.40 when 0.25 s more was
-        // trimmed from each run end, and with that trim all eight were within 2.4 stderr, cost
-        // 0.972; docs/fit-results.md, session 4). Fixed = XPASS.
+        // Measured with this code (2026-11-22, CLI, same settings): cost 1.0138 after 24
+        // iterations (CONVERGENCE), fit / validation NRMSE 0.0178 / 0.0166; z (reported stderr,
+        // the jackknife for all eight): mu -0.53, C1 +0.20, eta +0.35, Dc -0.99, vc +0.37,
+        // epsT +0.62, m +0.10, zeta +1.14; relative stderr mu 0.8 %, epsT 0.7 %, m 0.5 %,
+        // zeta 11 %, Dc 51 %.
         // Print every parameter first, then assert (a failure must not hide the others).
         struct Check { std::string name; double z; bool atBound; double se; };
         std::vector<Check> checks;
@@ -204,9 +270,10 @@ private slots:
         for (const Check& c : checks) {
             if (c.atBound) continue;
             QVERIFY(std::isfinite(c.se) && c.se > 0);
-            if (kKnownBias.count(c.name))
-                QEXPECT_FAIL("", qPrintable(QString::fromStdString("start-dependent minimum of " + c.name + " (see the comment above)")), Continue);
             QVERIFY2(std::abs(c.z) <= kFactor, c.name.c_str());
+            const auto cap = kMaxRelative.find(c.name);
+            if (cap != kMaxRelative.end())
+                QVERIFY2(c.se <= cap->second * std::abs(f.fit.value(c.name)), qPrintable(QString::fromStdString(c.name + ": stderr too large to say anything")));
             ++asserted;
         }
         QCOMPARE(asserted, 8);

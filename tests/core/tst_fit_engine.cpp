@@ -3,8 +3,11 @@
 #include <QtTest>
 
 #include <cmath>
+#include <limits>
+#include <map>
 #include <random>
 
+#include "core/identify/curve_coordinates.hpp"
 #include "core/identify/fit.hpp"
 
 using namespace stickslip::identify;
@@ -233,6 +236,101 @@ private slots:
         QVERIFY2(bad.message.find("scan of 'phase': not a free parameter") != std::string::npos, bad.message.c_str());
         QVERIFY(logGrid(0.0, 1.0, 5).empty());
         QVERIFY(logGrid(1.0, 10.0, 1).empty());
+    }
+
+    // The steady-state-curve coordinates (curve_coordinates.hpp): installed only with C1, eta,
+    // vc all free; kappa = C1/vc^2, s = eta - C1/vc and back; points outside C1's or eta's
+    // bounds flagged; the covariance carried back by the delta method, checked against a
+    // finite-difference Jacobian of the map.
+    void curveCoordinatesMapAndCarryTheCovariance() {
+        auto params = [](bool vcFree) {
+            std::vector<FitParameter> ps(4);
+            const char* names[4] = {"mu", "C1", "eta", "vc"};
+            for (int i = 0; i < 4; ++i)
+                if (!defaultParameter(names[i], stickslip::SetupKind::Dynamics, ps[static_cast<size_t>(i)])) qFatal("no default for %s", names[i]);
+            ps[0].value = 0.27;
+            ps[1].value = 0.23;
+            ps[2].value = 0.87;
+            ps[3].value = 0.097;
+            ps[3].free = vcFree;
+            return ps;
+        };
+        std::vector<FitParameter> fixedVc = params(false);
+        QVERIFY(!CurveCoordinates::install(fixedVc, {}).active());
+        QCOMPARE(fixedVc[1].name, std::string("C1"));
+        std::vector<FitParameter> scanned = params(true);
+        QVERIFY(!CurveCoordinates::install(scanned, {{"eta", {0.5, 1.0}}}).active());
+        std::vector<FitParameter> ps = params(true);
+        const CurveCoordinates cc = CurveCoordinates::install(ps, {});
+        QVERIFY(cc.active());
+        QCOMPARE(ps[1].name, std::string(CurveCoordinates::kCurvature));
+        QCOMPARE(ps[2].name, std::string(CurveCoordinates::kSlope));
+        QVERIFY(std::abs(ps[1].value - 0.23 / (0.097 * 0.097)) < 1e-9 * ps[1].value);
+        QVERIFY(std::abs(ps[2].value - (0.87 - 0.23 / 0.097)) < 1e-12);
+        std::vector<double> z = {ps[0].value, ps[1].value, ps[2].value, ps[3].value};
+        auto law = [&](const std::vector<double>& v) {
+            std::map<std::string, double> m = {{"mu", v[0]}, {CurveCoordinates::kCurvature, v[1]}, {CurveCoordinates::kSlope, v[2]}, {"vc", v[3]}};
+            cc.toLaw(v, m);
+            return m;
+        };
+        const std::map<std::string, double> back = law(z);
+        QVERIFY(!back.count(CurveCoordinates::kCurvature) && !back.count(CurveCoordinates::kSlope));
+        QVERIFY(std::abs(back.at("C1") - 0.23) < 1e-12);
+        QVERIFY(std::abs(back.at("eta") - 0.87) < 1e-12);
+        QVERIFY(cc.withinLawBounds(back));
+        std::vector<double> far = z;
+        far[3] = 1.0;  // C1 = kappa * 1 = 24 > 2
+        QVERIFY(!cc.withinLawBounds(law(far)));
+        std::vector<double> neg = z;
+        neg[2] = -10.0;  // eta < 0
+        QVERIFY(!cc.withinLawBounds(law(neg)));
+
+        // A fit result in the internal coordinates with a full covariance.
+        FitResult fr;
+        fr.names = {"mu", CurveCoordinates::kCurvature, CurveCoordinates::kSlope, "vc"};
+        fr.freeNames = fr.names;
+        fr.values = z;
+        fr.free = {true, true, true, true};
+        const std::vector<double> se = {1e-3, 2.0, 0.05, 0.01};
+        const double R[16] = {1, 0.3, -0.2, 0.1, 0.3, 1, 0.5, 0.6, -0.2, 0.5, 1, 0.4, 0.1, 0.6, 0.4, 1};
+        fr.stderrs = se;
+        fr.correlation.assign(R, R + 16);
+        FitResult restored = fr;
+        cc.restore(restored);
+        QCOMPARE(restored.names, (std::vector<std::string>{"mu", "C1", "eta", "vc"}));
+        QCOMPARE(restored.freeNames, restored.names);
+        QVERIFY(std::abs(restored.value("C1") - 0.23) < 1e-12 && std::abs(restored.value("eta") - 0.87) < 1e-12);
+        // Expected: G Cov Gt with G by central differences of the map (order mu, C1, eta, vc).
+        double G[4][4];
+        const char* out[4] = {"mu", "C1", "eta", "vc"};
+        for (int j = 0; j < 4; ++j) {
+            const double h = 1e-6 * std::max(1.0, std::abs(z[j]));
+            std::vector<double> zp = z, zm = z;
+            zp[j] += h;
+            zm[j] -= h;
+            std::map<std::string, double> lp = law(zp), lm = law(zm);
+            for (int i = 0; i < 4; ++i) G[i][j] = (lp.at(out[i]) - lm.at(out[i])) / (2 * h);
+        }
+        double cov[4][4], want[4][4];
+        for (int a = 0; a < 4; ++a)
+            for (int b = 0; b < 4; ++b) cov[a][b] = R[a * 4 + b] * se[a] * se[b];
+        for (int a = 0; a < 4; ++a)
+            for (int b = 0; b < 4; ++b) {
+                want[a][b] = 0;
+                for (int i = 0; i < 4; ++i)
+                    for (int j = 0; j < 4; ++j) want[a][b] += G[a][i] * cov[i][j] * G[b][j];
+            }
+        for (int a = 0; a < 4; ++a) {
+            QVERIFY2(std::abs(restored.stderrs[a] - std::sqrt(want[a][a])) < 1e-6 * std::sqrt(want[a][a]), out[a]);
+            for (int b = 0; b < 4; ++b)
+                QVERIFY(std::abs(restored.correlation[a * 4 + b] - want[a][b] / std::sqrt(want[a][a] * want[b][b])) < 1e-6);
+        }
+        QVERIFY(restored.solverSummary.find("steady-state curve") != std::string::npos);
+        // Not identifiable (NaN standard errors): C1 and eta get NaN, not a number made of NaN.
+        FitResult nan = fr;
+        nan.stderrs[1] = std::numeric_limits<double>::quiet_NaN();
+        cc.restore(nan);
+        QVERIFY(std::isnan(nan.stderrOf("C1")) && std::isnan(nan.stderrOf("eta")));
     }
 
     void defaultParametersHavePhysicalBounds() {
