@@ -311,10 +311,18 @@ FitResult fitLeastSquares(const FitProblem& prob) {
     PointEvaluator evaluator(map, res.residualEvaluations, 4 * p + 4);
     for (int s = 0; s < prob.multistarts && !cancelled; ++s) {
         std::vector<double> z(p);
-        for (size_t k = 0; k < p; ++k) {
-            if (s == 0) z[k] = map.toInternal(k, prob.parameters[map.freeIdx[k]].value);
-            else z[k] = map.lowerZ(k) + uni(rng) * (map.upperZ(k) - map.lowerZ(k));
-            z[k] = std::clamp(z[k], map.lowerZ(k), map.upperZ(k));
+        // A random start where the model cannot be evaluated (e.g. a change of coordinates
+        // whose box holds infeasible corners) is drawn again, up to kRandomStartDraws times.
+        constexpr int kRandomStartDraws = 20;
+        for (int draw = 0; draw < (s == 0 ? 1 : kRandomStartDraws); ++draw) {
+            for (size_t k = 0; k < p; ++k) {
+                if (s == 0) z[k] = map.toInternal(k, prob.parameters[map.freeIdx[k]].value);
+                else z[k] = map.lowerZ(k) + uni(rng) * (map.upperZ(k) - map.lowerZ(k));
+                z[k] = std::clamp(z[k], map.lowerZ(k), map.upperZ(k));
+            }
+            if (s == 0 || evaluator.evaluate({z}).front()->ok) break;
+            if (draw + 1 == kRandomStartDraws)
+                perStart << "start " << s << ": no evaluable random point in " << kRandomStartDraws << " draws\n";
         }
         if (s == 0) {
             for (const ParameterScan& sc : prob.scans) {

@@ -100,6 +100,27 @@ private slots:
         QVERIFY(std::abs(res.value("b") - 4.5) < 1e-6);
     }
 
+    // A random start where the model cannot be evaluated is drawn again: with most of the box
+    // where random starts fall infeasible (x > 0.4 of 0.1-0.9), every one of 4 starts still
+    // begins at an evaluable point and converges.
+    void infeasibleRandomStartsAreDrawnAgain() {
+        FitProblem p;
+        p.parameters = {{"x", 0.1, 0.0, 1.0, true, ParamScale::Linear}};
+        p.residualCount = 2;
+        p.residuals = [](const std::vector<double>& v, std::vector<double>& r) {
+            if (v[0] > 0.4) return false;  // infeasible beyond 0.4
+            r = {v[0] - 0.15, 0.1 * (v[0] - 0.15)};
+            return true;
+        };
+        p.multistarts = 4;
+        p.agreeingStarts = 0;
+        const FitResult res = fitLeastSquares(p);
+        QVERIFY(res.ok());
+        QCOMPARE(res.startsTried, 4);
+        for (double c : res.startCosts) QVERIFY2(std::isfinite(c) && c < 1e-12, res.solverSummary.c_str());
+        QVERIFY(std::abs(res.value("x") - 0.15) < 1e-6);
+    }
+
     // Failing evaluations are steps the solver refuses, not crashes.
     void failedEvaluationsAreAvoided() {
         FitProblem p;
