@@ -231,7 +231,7 @@ void addFitCommand(CLI::App& root, int& exitCode) {
         ->capture_default_str();
     cmd->add_option("--max-iterations", o->maxIterations, "solver iterations per start")->capture_default_str();
     cmd->add_flag("--jackknife", o->jackknife,
-                  "refit leaving each run out (>= 3 fit runs); stderr = the larger of Jacobian and jackknife");
+                  "repeat the whole fit leaving each run out (>= 3 fit runs, K more fits); stderr = the larger of Jacobian and jackknife");
     cmd->add_option("--coordinates", o->coordinates,
                     "dynamics, rate-state with C1, eta, vc free: solve in the steady-state curve's slope eta-C1/vc and curvature C1/vc^2 "
                     "with vc (curve), or in C1, eta, vc (plain); reported in C1, eta, vc either way")

@@ -399,8 +399,8 @@ QWidget* IdentifyPanel::buildFitTab() {
     solverRow->addStretch(1);
     form->addRow(tr("Solver"), solverRow);
     jackknife_ = new QCheckBox(tr("jackknife over runs"), w);
-    jackknife_->setToolTip(tr("refit leaving each run out (3 or more runs): standard error = the larger of the "
-                              "Jacobian and the jackknife value; honest where the cost is not quadratic, K refits slower"));
+    jackknife_->setToolTip(tr("repeat the whole fit leaving each run out (3 or more runs): standard error = the larger "
+                              "of the Jacobian and the jackknife value; honest where the cost has several minima, K more fits"));
     form->addRow(tr("Std. errors"), jackknife_);
     v->addLayout(form);
 
