@@ -138,6 +138,7 @@ void runFit(const FitOptions& o, int& exitCode) {
         if (!f.ok) return fail(std::string(toString(law)) + ": " + f.message, kRunFailed);
         std::cerr << "  " << toString(law) << ": fit NRMSE " << f.fitNrmse << ", validation NRMSE " << f.validationNrmse
                   << ", " << f.fit.identifiabilityMessage << "\n";
+        if (!f.stderrWarning.empty()) std::cerr << "  warning: " << f.stderrWarning << "\n";
         fits.push_back(std::move(f));
     }
     std::vector<const DatasetFit*> fitted;

@@ -600,7 +600,8 @@ void IdentifyPanel::onFitFinished(const FitOutcome& o) {
                                                                   paramTitle(f.freeNames[b]).section(' ', 0, 0))
                                  .arg(f.correlation[a * p + b], 0, 'f', 3);
         if (!pairs.isEmpty()) text += tr("; strongly correlated: %1").arg(pairs.join(", "));
-        bad = bad || !f.identifiable || !pairs.isEmpty();
+        if (!lf.fit.stderrWarning.empty()) text += "; " + QString::fromStdString(lf.fit.stderrWarning);
+        bad = bad || !f.identifiable || !pairs.isEmpty() || !lf.fit.stderrWarning.empty();
         warnings << QStringLiteral("<b>%1</b>: %2").arg(lawName(lf.law), text.toHtmlEscaped());
     }
     identifiability_->setText(warnings.join("<br>"));

@@ -265,6 +265,9 @@ struct DatasetFit {
     // fit.stderrs are the larger of the two.
     std::vector<double> stderrsJackknife, stderrsJacobian;
     int jackknifeFits = 0;
+    // Non-empty when the reported standard errors are known to be too small: a dynamics fit with
+    // C1, η, v_c free (steady-state-curve coordinates) without the jackknife.
+    std::string stderrWarning;
 };
 
 DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& validationRuns,

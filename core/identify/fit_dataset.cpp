@@ -406,6 +406,10 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
             }
         }
     }
+    if (curve.active() && out.jackknifeFits == 0)
+        out.stderrWarning = "standard errors from the Jacobian only: with C1, eta and vc free the dynamics cost has several "
+                            "minima along the steady-state curve's valley, and these errors are too small there (on the "
+                            "synthetic D05 5-15x for C1, eta, vc, Dc and mu); use the jackknife over runs";
     double sseF = 0, ssF = 0, sseV = 0, ssV = 0;
     for (const CleanRun& c : fitRuns) {
         RunScore s = scoreRun(c, st.setup, out.model, st.predict, "fit");

@@ -38,6 +38,7 @@ nlohmann::json toJson(const DatasetFit& f) {
         "Jacobian value assumes one quadratic minimum; where the cost has several (the dynamics fit of C1, eta, vc: on "
         "the synthetic D05 5-15 Jacobian standard errors apart) only the jackknife is honest";
     j["jackknife_fits"] = f.jackknifeFits;
+    j["stderr_warning"] = f.stderrWarning.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.stderrWarning);
     j["tau_int"] = numOrNull(f.tauInt);
     nlohmann::json corr = nlohmann::json::array();
     const size_t p = f.fit.freeNames.size();

@@ -182,6 +182,7 @@ private slots:
         QCOMPARE(j["prediction"]["slip_start_fraction"].get<double>(), 0.5);
         QVERIFY(j["parameters"]["mu"].contains("stderr_jackknife"));
         QVERIFY(j["parameters"]["mu"]["stderr_jackknife"].is_null());  // not asked for
+        QVERIFY(j.contains("stderr_warning") && j["stderr_warning"].is_null());  // vc not free: no valley warning
     }
 
     // --jackknife with 3 fit runs: every free parameter gets a jackknife standard error, and the
