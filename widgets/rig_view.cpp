@@ -4,6 +4,7 @@
 #include <QDateTime>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QFontMetricsF>
 #include <QPainter>
 #include <QPainterPath>
 #include <QSlider>
@@ -152,18 +153,29 @@ void RigCanvas::paintEvent(QPaintEvent*) {
     f.setBold(true);
     p.setFont(f);
     p.setPen(contact);
-    p.drawText(QRectF(0.05 * W, 6, 0.9 * W, 20), Qt::AlignLeft | Qt::AlignVCenter,
-               has_ ? (stuck ? QStringLiteral("STICK") : QStringLiteral("SLIP")) : QStringLiteral("no run"));
+    const QString state = has_ ? (stuck ? QStringLiteral("STICK") : QStringLiteral("SLIP")) : QStringLiteral("no run");
+    p.drawText(QRectF(0.05 * W, 6, 0.9 * W, 20), Qt::AlignLeft | Qt::AlignVCenter, state);
+    const double stateRight = 0.05 * W + QFontMetricsF(f).horizontalAdvance(QStringLiteral("STICK")) + 12;
     p.setFont(font());
     p.setPen(ink);
     if (has_) {
-        p.drawText(QRectF(0.2 * W, 6, 0.78 * W, 20), Qt::AlignRight | Qt::AlignVCenter,
-                   QStringLiteral("t = %1 s   u = %2 mm   x = %3 mm   V = %4 m/s   F/t_N = %5")
-                       .arg(sample_.t_s, 0, 'f', 3)
-                       .arg(sample_.stage_m * 1e3, 0, 'f', 3)
-                       .arg(sample_.slider_m * 1e3, 0, 'f', 3)
-                       .arg(sample_.relVel_mps, 0, 'f', 4)
-                       .arg(sample_.ratio, 0, 'f', 3));
+        const QStringList items = {QStringLiteral("t = %1 s").arg(sample_.t_s, 0, 'f', 3),
+                                   QStringLiteral("u = %1 mm").arg(sample_.stage_m * 1e3, 0, 'f', 3),
+                                   QStringLiteral("x = %1 mm").arg(sample_.slider_m * 1e3, 0, 'f', 3),
+                                   QStringLiteral("V = %1 m/s").arg(sample_.relVel_mps, 0, 'f', 4),
+                                   QStringLiteral("F/t_N = %1").arg(sample_.ratio, 0, 'f', 3)};
+        // As many items per line as fit right of the STICK/SLIP label (a narrow view gets more
+        // lines instead of text running under the label).
+        const QRectF line(stateRight, 6, 0.98 * W - stateRight, 20);
+        const QFontMetricsF fm(font());
+        const QString gap = QStringLiteral("   ");
+        QStringList lines;
+        for (const QString& item : items) {
+            if (!lines.isEmpty() && fm.horizontalAdvance(lines.back() + gap + item) <= line.width()) lines.back() += gap + item;
+            else lines << item;
+        }
+        for (int i = 0; i < lines.size(); ++i)
+            p.drawText(line.translated(0, 18 * i), Qt::AlignRight | Qt::AlignVCenter, lines[i]);
     }
     // Scale bar.
     const double bar = scale_m_ * pxPerM;

@@ -20,6 +20,7 @@
 #include <QPushButton>
 #include <QSaveFile>
 #include <QScrollArea>
+#include <QScrollBar>
 #include <QSpinBox>
 #include <QSplitter>
 #include <QTabWidget>
@@ -124,7 +125,14 @@ IdentifyPanel::IdentifyPanel(QWidget* parent) : QWidget(parent) {
     controls_->addTab(scrolled(buildDataTab()), tr("Data"));
     controls_->addTab(scrolled(buildFitTab()), tr("Fit"));
     controls_->addTab(scrolled(buildIdentifyTab()), tr("Identify"));
-    controls_->setMinimumWidth(430);
+    // At least as wide as the widest tab's content needs (the scroll areas do not scroll
+    // sideways): at 1680 px with both docks open a 430 px minimum clipped the Fit tab's rows and
+    // the wrapped identifiability line (seen in a screenshot).
+    int need = 430;
+    for (int i = 0; i < controls_->count(); ++i)
+        if (auto* sa = qobject_cast<QScrollArea*>(controls_->widget(i)); sa && sa->widget())
+            need = std::max(need, sa->widget()->minimumSizeHint().width() + sa->verticalScrollBar()->sizeHint().width() + 12);
+    controls_->setMinimumWidth(need);
     auto* split = new QSplitter(Qt::Horizontal, this);
     split->addWidget(controls_);
     split->addWidget(buildPlots());
@@ -356,7 +364,7 @@ QWidget* IdentifyPanel::buildFitTab() {
         auto* c = new QCheckBox(paramTitle(n).section(' ', 0, 0), freeBox);
         c->setToolTip(tr("fit %1 (else held at its start value)").arg(paramTitle(n)));
         fitFree_[n] = c;
-        fg->addWidget(c, k / 5, k % 5);
+        fg->addWidget(c, k / 3, k % 3);  // μ C1 η / D_c v_c ε_T / r m* ζ: fits the panel's width
         ++k;
     }
     setFreeParameters({"mu", "eta", "Dc", "vc", "epsT"});

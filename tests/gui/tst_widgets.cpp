@@ -582,6 +582,22 @@ void TestWidgets::rigViewDrivesCursor() {
         for (int x = 0; x < img.width(); x += 3)
             if (img.pixelColor(x, y) != QColor(Qt::white)) ++nonWhite;
     QVERIFY(nonWhite > 100);
+    // The read-out (t, u, x, V, F/t_N) fits on one line when wide; a narrow view puts it on two
+    // lines instead of letting it run under the STICK/SLIP label (seen in a screenshot): ink in
+    // the second line's band at the right only when narrow.
+    auto secondLineInk = [&](int width) {
+        rig.resize(width, 300);
+        const QImage im = rig.grab().toImage();
+        int ink = 0;
+        for (int y = 42; y < 52; ++y)  // the second line's band (the grab includes the frame)
+            for (int x = static_cast<int>(0.6 * width); x < static_cast<int>(0.97 * width); ++x)
+                if (qGray(im.pixel(x, y)) < 128) ++ink;
+        return ink;
+    };
+    const int wide = secondLineInk(1100), narrow = secondLineInk(420);
+    qInfo("read-out second-line ink: wide %d, narrow %d", wide, narrow);
+    QCOMPARE(wide, 0);
+    QVERIFY(narrow > 20);
     rig.clear();
     QVERIFY(!rig.currentSample(s));
 }
