@@ -163,9 +163,13 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         // Starting values from the equation-error fit (identify.hpp), only for free parameters.
         std::vector<IdentifyRun> idRuns;
         bool usable = true;
+        std::string why;
         for (const CleanRun& c : fitRuns) {
             IdentifyRun ir;
-            if (!makeIdentifyRun(c, SetupKind::Dynamics, ir, nullptr) || ir.accel_mps2.empty()) { usable = false; break; }
+            if (!makeIdentifyRun(c, SetupKind::Dynamics, ir, &why)) {  // why names the file
+                usable = false;
+                break;
+            }
             idRuns.push_back(std::move(ir));
         }
         auto isFree = [&](const char* n) {
@@ -195,7 +199,7 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
                 }
             }
         } else {
-            startNote = "equation-error start not used: a run has no acceleration signal";
+            startNote = "equation-error start not used: " + why;
         }
     }
     for (const auto& [name, v] : st.start) {
