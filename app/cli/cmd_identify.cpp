@@ -20,7 +20,7 @@ namespace {
 
 struct IdentifyCliOptions {
     std::vector<std::string> data, validateOn, columns, units, runSets, candidates;
-    std::string setup, manifest, report, html, free = "mu,C1,eta,vc", dynamicsResidual = "equation-error";
+    std::string setup, manifest, report, html, free = "mu,C1,eta,Dc,vc,epsT", dynamicsResidual = "equation-error";
     identify::PreprocessSettings pre;
     bool noBandStop = false, noLowPass = false, noSteadyTrim = false, quiet = false;
     identify::IdentifyOptions id;
@@ -133,6 +133,11 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--candidates", o->candidates, "restrict the candidates (catalogue names)")->delimiter(',');
     cmd->add_option("--max-effects", o->id.maxEffects, "at most this many effects")->capture_default_str();
     cmd->add_option("--bic-margin", o->id.bicMargin, "an effect must lower BIC by more than this")->capture_default_str();
+    cmd->add_option("--null-alpha", o->id.nullAlpha,
+                    "an effect's gain must exceed the (1 - this) quantile of what noise replicas of the runs give, in (0, 1)")
+        ->capture_default_str();
+    cmd->add_option("--null-replicas", o->id.nullReplicas, "noise replicas of the null distribution (0: off)")
+        ->capture_default_str();
     cmd->add_option("--held-out-alpha", o->id.heldOutAlpha,
                     "level of the one-sided paired test over held-out runs an effect must pass, in (0, 1)")->capture_default_str();
     cmd->add_option("--identifiability-alpha", o->id.identifiabilityAlpha,
@@ -146,8 +151,8 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--max-segments", o->id.maxSegmentsPerRun, "segment residual: at most this many segments per run")
         ->capture_default_str();
     cmd->add_option("--seed", o->id.seed, "random seed (the loop is reproducible)")->capture_default_str();
-    cmd->add_option("--epsT", o->id.start.epsT_N_per_m, "tangential penalty stiffness held fixed [N/m]")->capture_default_str();
-    cmd->add_option("--Dc", o->id.start.Dc_m, "critical slip distance held fixed [m]")->capture_default_str();
+    cmd->add_option("--epsT", o->id.start.epsT_N_per_m, "tangential penalty stiffness: start value, or the value held when not in --free [N/m]")->capture_default_str();
+    cmd->add_option("--Dc", o->id.start.Dc_m, "critical slip distance: start value, or the value held when not in --free [m]")->capture_default_str();
     cmd->add_flag("--no-bandstop", o->noBandStop, "switch the mains band-stop off");
     cmd->add_flag("--no-lowpass", o->noLowPass, "switch the low-pass off");
     cmd->add_flag("--no-steady-trim", o->noSteadyTrim, "keep ramps");

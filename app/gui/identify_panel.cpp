@@ -667,7 +667,12 @@ QWidget* IdentifyPanel::buildIdentifyTab() {
         fg->addWidget(c, k / 4, k % 4);
         ++k;
     }
-    setIdentifyFree({"mu", "C1", "eta", "vc"});
+    {
+        const IdentifyOptions defaults;  // the same baseline as stickslip-cli identify
+        QStringList names;
+        for (const std::string& n : defaults.freeLaw) names << QString::fromStdString(n);
+        setIdentifyFree(names);
+    }
     form->addRow(tr("Free law"), freeBox);
     candidateList_ = new QListWidget(w);
     for (const EffectInfo& e : effectCatalogue()) {
@@ -686,7 +691,7 @@ QWidget* IdentifyPanel::buildIdentifyTab() {
     maxEffects_->setSuffix(tr(" effects"));
     bicMargin_ = new QDoubleSpinBox(w);
     bicMargin_->setRange(0, 1000);
-    bicMargin_->setValue(10);
+    bicMargin_->setValue(IdentifyOptions{}.bicMargin);
     bicMargin_->setPrefix(tr("ΔBIC < −"));
     idMultistarts_ = new QSpinBox(w);
     idMultistarts_->setRange(1, 20);

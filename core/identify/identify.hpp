@@ -50,6 +50,11 @@ struct IdentifyRun {
     double nominalMass_kg = 0.53;        // m* start value (dynamics)
     double frequency_Hz = 0.0;           // f (0: unknown)
     double slipBefore_m = 0.0;           // slip accumulated before this run (wear_drift); set by identifyEffects
+    // The cleaning filters the measured force went through (none when `filtered` is false): the
+    // predicted force is passed through the same filters, redesigned at the rate the loop uses,
+    // so that both sides of the residual have lost the same corners and harmonics.
+    bool filtered = false;
+    FilterSettings filters;
 };
 
 // From a preprocessed run (samples [begin, end)); false with a message if signals are missing.
@@ -75,7 +80,7 @@ enum class DynamicsResidual { EquationError, Segments, Auto };
 
 struct IdentifyOptions {
     RateStateParams start;                                        // starting law values (μ, η, …, ε_T fixed unless free)
-    std::vector<std::string> freeLaw = {"mu", "C1", "eta", "vc"}; // baseline free law parameters
+    std::vector<std::string> freeLaw = {"mu", "C1", "eta", "Dc", "vc", "epsT"}; // baseline free law parameters
     bool fitMass = true;                                          // dynamics: m* free (rig channel)
     double zetaNominal = 0.005;                                   // dynamics: ζ of the baseline rig ("very small")
     std::vector<std::string> candidates;                          // empty: the whole catalogue
@@ -100,11 +105,17 @@ struct IdentifyOptions {
     //  With fewer than 3 held-out runs (≤ 1 degree of freedom, no power) (2) requires every
     //  held-out run to improve and (3) uses the Jacobian stderr × sqrt(τ_int): weaker guards.
     //  Both α are the conventional 5 % and not tuned to data.
-    double bicMargin = 10.0;         // ΔBIC must be below −this ("very strong" evidence, Kass & Raftery)
+    double bicMargin = 0.0;          // (1a) ΔBIC must be below −this (0: the penalised fit must improve at all)
+    // (1b) noise null (noise_null.hpp): the real gain in the sum of squares must exceed the
+    // (1 − nullAlpha) quantile of the gains that `nullReplicas` replicas of the residual's noise
+    // (AR(1) per run and channel, level and colour from the current model's residual) give in
+    // the linearised candidate model. 0 replicas: off.
+    double nullAlpha = 0.05;
+    int nullReplicas = 200;
     double heldOutAlpha = 0.05;      // (2) one-sided level of the paired held-out test
     double identifiabilityAlpha = 0.05;  // (3) two-sided level of the size test
     int decimate = 0;                // use every n-th sample in the fits; 0: auto (prescribed ≥ 128
-                                     // samples per forcing period, dynamics ≈ 250 Hz)
+                                     // samples per forcing period, dynamics ≈ 500 Hz)
     int substeps = 2;                // law steps per sample (prescribed)
     double stickVelocity_mps = 5e-3; // |V| below this counts as stuck (dynamics channel, diagnostics)
     int multistarts = 2;
@@ -152,6 +163,9 @@ struct CandidateScore {
     std::string sizeParam;             // size parameter tested ("1/kt_N_per_m" for a stiffness)
     double sizeValue = kNoTest, sizeNull = kNoTest, sizeStderr = kNoTest, sizeCritical = kNoTest;
     std::string sizeStderrKind;        // "jackknife over K leave-one-run-out fits" or "Jacobian x sqrt(tau_int)"
+    // (1b) noise null: the real gain in the sum of squares and the null's (1 − α) quantile.
+    double gain = kNoTest, nullGain = kNoTest;
+    int nullReplicas = 0;
     static constexpr double kNoTest = -1.0;
     std::string residual = "equation_error";  // dynamics: "equation_error" or "segments"; prescribed: "prescribed"
 };
@@ -191,6 +205,8 @@ struct IdentifyResult {
     double slipEpisodes = 0;  // independent units of the BIC (slip episodes in the fit runs)
     double tauInt = 1;        // τ_int of the baseline's residual (samples); n_eff = min(n/τ_int, slipEpisodes)
     double heldOutAlpha = 0.05, identifiabilityAlpha = 0.05;  // the levels used (IdentifyOptions)
+    double nullAlpha = 0.05, bicMargin = 0.0;
+    int nullReplicas = 0;
     double segmentsUsed = 0;  // dynamics: segments in the fit runs (units of the BIC with the segment residual)
     std::string residual;     // residual of "before"/"after": "prescribed", "equation_error" or "segments"
 };

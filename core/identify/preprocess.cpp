@@ -575,6 +575,7 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
     c.begin = b;
     c.end = e;
     c.filter = sos;
+    c.filterSettings = s.filters;
     c.notes.push_back("fit window " + std::to_string(t[b]) + " .. " + std::to_string(t[e - 1]) + " s");
     out = std::move(c);
     return true;

@@ -117,6 +117,7 @@ struct CleanRun {
     // cleaned the measured signals; empty when both were off. Predictions are passed through the
     // same filter before they are compared with the cleaned signals (predict.hpp).
     Sos filter;
+    FilterSettings filterSettings;  // the settings that designed `filter` (to redesign it at another rate)
     // The measured force and slider displacement before that filter (after resampling), kept
     // when the filter is on (else empty): the filtered prediction is then exactly
     // filter(prediction) where predicted and filter(measurement) elsewhere.

@@ -1,12 +1,16 @@
-// The identify loop with its default options on the independent simulator's rig runs
-// (../shared/data/synthetic), checked against the answer keys (read only to check, never
-// given to the loop): D05 has no hidden effect, so nothing may be added; D03 hides a
-// frictional lag, which must be named and must cut the held-out error; D01, D02 and D04 must
-// get their hidden effect and nothing else.
+// The identify loop with its default options on all 18 of the independent simulator's rig
+// sets (../shared/data/synthetic), checked against the answer keys (read only to check, never
+// given to the loop): the set of effects added must be exactly the key's set (none, one or
+// two), no extra and none missing. Each set is its own CTest entry (tests/CMakeLists.txt runs
+// one data row per entry). Sets the current loop gets wrong are listed in kKnownMiss with what
+// goes wrong (docs/identify-results.md); they are expected failures, and turn into an XPASS
+// (a failure) the day the loop gets them right, so the list cannot go stale.
 #include <QtTest/QtTest>
 
 #include <cmath>
 #include <fstream>
+#include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "core/identify/identify.hpp"
@@ -25,7 +29,21 @@ nlohmann::json answer(const std::string& set) {
     return nlohmann::json::parse(in);
 }
 
-std::string answerEffect(const std::string& set) { return answer(set).at("effect").get<std::string>(); }
+// The key's effects: "effects" (a list) where present, else "effect" ("none" = no effect).
+std::set<std::string> answerEffects(const std::string& set) {
+    const nlohmann::json key = answer(set);
+    std::set<std::string> out;
+    if (key.contains("effects") && key["effects"].is_array()) {
+        for (const auto& e : key["effects"]) out.insert(e.get<std::string>());
+    } else if (key.at("effect").get<std::string>() != "none") {
+        out.insert(key.at("effect").get<std::string>());
+    }
+    return out;
+}
+
+// Measured with the code of this commit (docs/identify-results.md, "all 18 sets").
+const std::map<std::string, const char*> kKnownMiss = {
+};
 
 IdentifyResult identifySet(const std::string& set) {
     const std::string dir = kShared + "/data/synthetic/" + set;
@@ -59,57 +77,34 @@ QString added(const IdentifyResult& r) {
 class TstIdentifySynthetic : public QObject {
     Q_OBJECT
 private slots:
-    void noEffectDatasetGetsNothing() {
-        QCOMPARE(answerEffect("D05"), std::string("none"));
-        const IdentifyResult r = identifySet("D05");
-        QVERIFY2(r.ok, r.message.c_str());
-        QVERIFY2(r.effectsAdded.empty(), qPrintable("added: " + added(r)));
-        QVERIFY(!r.candidates.empty());  // every candidate was tried and rejected
-        for (const CandidateScore& c : r.candidates) QVERIFY2(!c.accepted, c.name.c_str());
-    }
-
-    // Issue 6 (selection): on D01 and D04 the loop used to add the key's effect and THEN a
-    // frictional lag (and on D04 a sensor inertia) that the data do not have, because a small
-    // lag absorbs a systematic error of the equation-error residual and passes the ΔBIC margin.
-    // With the held-out paired test and the jackknife size test it must stop after the key's
-    // effect, and the key's value must lie in the 95 % interval of the jackknife error. D02
-    // (normal_load_mu) never had the problem and is held to the same standard.
-    void onlyTheHiddenEffectIsAdded_data() {
+    void exactEffectSet_data() {
         QTest::addColumn<QString>("set");
-        QTest::newRow("D01") << "D01";
-        QTest::newRow("D02") << "D02";
-        QTest::newRow("D04") << "D04";
+        for (int i = 1; i <= 18; ++i) {
+            const QString set = QString("D%1").arg(i, 2, 10, QChar('0'));
+            QTest::newRow(qPrintable(set)) << set;
+        }
     }
-    void onlyTheHiddenEffectIsAdded() {
+    void exactEffectSet() {
         QFETCH(QString, set);
-        const nlohmann::json key = answer(set.toStdString());
-        const IdentifyResult r = identifySet(set.toStdString());
+        const std::string name = set.toStdString();
+        const std::set<std::string> truth = answerEffects(name);
+        const IdentifyResult r = identifySet(name);
         QVERIFY2(r.ok, r.message.c_str());
-        QVERIFY2(r.effectsAdded.size() == 1 && r.effectsAdded.front().name == key.at("effect").get<std::string>(),
-                 qPrintable("added: " + added(r)));
-        const AddedEffect& e = r.effectsAdded.front();
-        const double truth = key.at("effect_params").at(e.params.front().name).get<double>();
-        bool checked = false;
-        for (const CandidateScore& c : r.candidates) {
+        for (const CandidateScore& c : r.candidates)
             qInfo("%s round %d dBIC %.2f held-out p %.3g size %.4g +- %.3g (crit %.2f): %s", c.name.c_str(), c.round, c.deltaBic,
                   c.heldOutP, c.sizeValue, c.sizeStderr, c.sizeCritical, c.accepted ? "added" : c.reason.c_str());
-            if (!c.accepted) continue;
-            QVERIFY2(std::abs(c.sizeValue - truth) <= c.sizeCritical * c.sizeStderr,
-                     qPrintable(QString("%1 = %2, key %3, jackknife s.e. %4").arg(QString::fromStdString(c.name))
-                                    .arg(c.sizeValue).arg(truth).arg(c.sizeStderr)));
-            checked = true;
-        }
-        QVERIFY(checked);
-        QVERIFY(r.after.validationNrmse < r.before.validationNrmse);
-    }
-
-    void hiddenFrictionalLagIsNamed() {
-        QCOMPARE(answerEffect("D03"), std::string("frictional_lag"));
-        const IdentifyResult r = identifySet("D03");
-        QVERIFY2(r.ok, r.message.c_str());
-        QVERIFY2(!r.effectsAdded.empty() && r.effectsAdded.front().name == "frictional_lag",
-                 qPrintable("added: " + added(r)));
-        QVERIFY(r.after.validationNrmse < r.before.validationNrmse);
+        qInfo("%s: held-out NRMSE before %.4f after %.4f, fit before %.4f after %.4f, unexplained %d", name.c_str(),
+              r.before.validationNrmse, r.after.validationNrmse, r.before.fitNrmse, r.after.fitNrmse, int(r.unexplained));
+        // Whatever it adds never makes the held-out error worse.
+        QVERIFY(r.after.validationNrmse <= r.before.validationNrmse);
+        std::set<std::string> got;
+        for (const AddedEffect& e : r.effectsAdded) got.insert(e.name);
+        QStringList want;
+        for (const std::string& t : truth) want << QString::fromStdString(t);
+        const auto miss = kKnownMiss.find(name);
+        if (miss != kKnownMiss.end()) QEXPECT_FAIL("", miss->second, Continue);
+        QVERIFY2(got == truth, qPrintable("added: [" + added(r) + "], key: [" + want.join(", ") + "]"));
+        if (!r.effectsAdded.empty()) QVERIFY(r.after.validationNrmse < r.before.validationNrmse);
     }
 };
 

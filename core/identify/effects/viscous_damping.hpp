@@ -14,6 +14,14 @@ namespace stickslip::identify {
 struct ViscousDamping {
     double zeta = 0.005;  // ζ [-]
 
+    // The paper's rig damping is "very small" (MODEL.md: ζ = 0.5 %). The identify baseline fits
+    // the rig's ζ within [kBaselineMin, kBaselineMax] — up to 5× the paper's value, so a rig that
+    // is a little more damped than the paper's is still the paper's model — and this effect is
+    // damping beyond that range ("much larger than nominal"). The boundary between the two is a
+    // definition of the effect, not a statistic: it is the same for every data set.
+    static constexpr double kBaselineMin = 1e-4;
+    static constexpr double kBaselineMax = 0.025;
+
     double rigDamping(double k_N_per_m, double m_kg) const { return 2.0 * zeta * std::sqrt(k_N_per_m * m_kg); }
     double parallelDamping(double tN_N) const { return zeta * tN_N; }  // c_p [N s/m]
 

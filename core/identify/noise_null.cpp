@@ -1,0 +1,81 @@
+#include "noise_null.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace stickslip::identify {
+
+void fitAr1(const std::vector<double>& r, const std::vector<char>& used, double& phi, double& sigma) {
+    double ss = 0, n = 0, c0 = 0, c1 = 0;
+    for (size_t i = 0; i < r.size(); ++i) {
+        if (!used[i]) continue;
+        ss += r[i] * r[i];
+        n += 1;
+        if (i > 0 && used[i - 1]) {
+            c0 += r[i - 1] * r[i - 1];
+            c1 += r[i - 1] * r[i];
+        }
+    }
+    sigma = n > 0 ? std::sqrt(ss / n) : 0.0;
+    phi = c0 > 0 ? std::clamp(c1 / c0, -0.99, 0.99) : 0.0;
+}
+
+std::vector<double> noiseReplica(const std::vector<NoiseBlock>& blocks, size_t total, uint64_t seed) {
+    std::vector<double> e(total, 0.0);
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    for (const NoiseBlock& b : blocks) {
+        if (b.offset + b.length > total || b.used.size() != b.length) continue;
+        const double innov = b.sigma * std::sqrt(std::max(0.0, 1.0 - b.phi * b.phi));
+        double x = b.sigma * normal(rng);  // stationary start
+        for (size_t k = 0; k < b.length; ++k) {
+            if (k > 0) x = b.phi * x + innov * normal(rng);
+            if (b.used[k]) e[b.offset + k] = x;
+        }
+    }
+    return e;
+}
+
+double NullGains::quantile(double p) const {
+    if (gains.empty()) return 0.0;
+    const double q = std::ceil(std::clamp(p, 0.0, 1.0) * static_cast<double>(gains.size()));
+    const size_t k = static_cast<size_t>(std::clamp(q, 1.0, static_cast<double>(gains.size()))) - 1;
+    return gains[k];
+}
+
+NullGains projectionGainNull(const Eigen::MatrixXd& J0, const Eigen::MatrixXd& Jc, const std::vector<NoiseBlock>& blocks,
+                             int replicas, uint64_t seed) {
+    NullGains out;
+    const Eigen::Index n = Jc.rows();
+    if (n == 0 || Jc.cols() == 0 || (J0.cols() > 0 && J0.rows() != n)) return out;
+    // Orthonormal basis of span(J_0), then of the part of span(J_c) orthogonal to it.
+    Eigen::MatrixXd R = Jc;
+    if (J0.cols() > 0) {
+        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr0(J0);
+        qr0.setThreshold(1e-9);
+        const Eigen::Index r0 = qr0.rank();
+        const Eigen::MatrixXd Q0 = (qr0.householderQ() * Eigen::MatrixXd::Identity(n, r0));
+        R -= Q0 * (Q0.transpose() * Jc);
+    }
+    // Dependence measured against the columns' own size before the projection.
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qrc(R);
+    const double scale = std::max(Jc.norm(), 1e-300);
+    qrc.setThreshold(1e-9 * scale / std::max(R.norm(), 1e-300));
+    const Eigen::Index rc = qrc.rank();
+    out.rankExtra = static_cast<int>(rc);
+    if (rc == 0) {
+        out.gains.assign(static_cast<size_t>(std::max(replicas, 0)), 0.0);
+        return out;
+    }
+    const Eigen::MatrixXd Qc = (qrc.householderQ() * Eigen::MatrixXd::Identity(n, rc));
+    for (int b = 0; b < replicas; ++b) {
+        const std::vector<double> e = noiseReplica(blocks, static_cast<size_t>(n), seed + static_cast<uint64_t>(b));
+        const Eigen::Map<const Eigen::VectorXd> ev(e.data(), n);
+        out.gains.push_back((Qc.transpose() * ev).squaredNorm());
+    }
+    std::sort(out.gains.begin(), out.gains.end());
+    return out;
+}
+
+}  // namespace stickslip::identify

@@ -1,0 +1,108 @@
+// The noise null of the identify selection (noise_null.hpp): AR(1) fit, replicas, and the
+// distribution of projection gains against its closed form for white noise.
+#include <QtTest/QtTest>
+
+#include <cmath>
+#include <random>
+
+#include "core/identify/diagnostics.hpp"
+#include "core/identify/noise_null.hpp"
+
+using namespace stickslip::identify;
+
+class TestNoiseNull : public QObject {
+    Q_OBJECT
+private slots:
+    // An AR(1) path with known φ and σ is fitted back; unused samples do not enter.
+    void ar1FitRecoversItsParameters() {
+        NoiseBlock b;
+        b.length = 200000;
+        b.used.assign(b.length, 1);
+        b.phi = 0.7;
+        b.sigma = 0.3;
+        const std::vector<double> e = noiseReplica({b}, b.length, 42);
+        double phi = 0, sigma = 0;
+        fitAr1(e, b.used, phi, sigma);
+        QVERIFY2(std::abs(phi - 0.7) < 0.01, qPrintable(QString::number(phi)));
+        QVERIFY2(std::abs(sigma - 0.3) < 0.01 * 0.3, qPrintable(QString::number(sigma)));
+        // Half the samples masked out: still the same process on the rest.
+        std::vector<char> half(b.length, 0);
+        for (size_t i = 0; i < half.size(); ++i) half[i] = (i / 1000) % 2 == 0;
+        fitAr1(e, half, phi, sigma);
+        QVERIFY(std::abs(phi - 0.7) < 0.02);
+        QVERIFY(std::abs(sigma - 0.3) < 0.02 * 0.3);
+        // No usable pair: φ = 0; nothing used: σ = 0.
+        fitAr1({1.0, 2.0}, {1, 0}, phi, sigma);
+        QCOMPARE(phi, 0.0);
+        fitAr1({1.0, 2.0}, {0, 0}, phi, sigma);
+        QCOMPARE(sigma, 0.0);
+    }
+
+    // A replica is zero where a block does not compare, reproducible by seed, and different
+    // for another seed.
+    void replicaRespectsMaskAndSeed() {
+        NoiseBlock b;
+        b.offset = 3;
+        b.length = 5;
+        b.used = {1, 0, 1, 1, 0};
+        b.sigma = 1.0;
+        const std::vector<double> e = noiseReplica({b}, 10, 7);
+        QCOMPARE(e.size(), size_t(10));
+        for (size_t i : {0, 1, 2, 4, 7, 8, 9}) QCOMPARE(e[i], 0.0);
+        QVERIFY(e[3] != 0.0 && e[5] != 0.0 && e[6] != 0.0);
+        QCOMPARE(noiseReplica({b}, 10, 7), e);
+        QVERIFY(noiseReplica({b}, 10, 8) != e);
+    }
+
+    // White noise of variance σ² and q extra independent columns: the gain is σ² χ²_q, so its
+    // 95 % quantile is σ² · 3.841 (q = 1) and σ² · 5.991 (q = 2); columns already in J_0 add
+    // nothing (rank 0, all gains 0).
+    void whiteNoiseGainIsChiSquare() {
+        const Eigen::Index n = 2000;
+        std::mt19937 rng(3);
+        std::normal_distribution<double> nd(0.0, 1.0);
+        Eigen::MatrixXd J0(n, 2), Jc(n, 2);
+        for (Eigen::Index i = 0; i < n; ++i) {
+            J0(i, 0) = 1.0;
+            J0(i, 1) = std::sin(0.01 * static_cast<double>(i));
+            Jc(i, 0) = nd(rng);
+            Jc(i, 1) = nd(rng);
+        }
+        NoiseBlock b;
+        b.length = static_cast<size_t>(n);
+        b.used.assign(b.length, 1);
+        b.sigma = 0.5;
+        const NullGains one = projectionGainNull(J0, Jc.leftCols(1), {b}, 4000, 11);
+        QCOMPARE(one.rankExtra, 1);
+        QCOMPARE(one.gains.size(), size_t(4000));
+        QVERIFY2(std::abs(one.quantile(0.95) / (0.25 * 3.841) - 1.0) < 0.08, qPrintable(QString::number(one.quantile(0.95))));
+        const NullGains two = projectionGainNull(J0, Jc, {b}, 4000, 11);
+        QCOMPARE(two.rankExtra, 2);
+        QVERIFY2(std::abs(two.quantile(0.95) / (0.25 * 5.991) - 1.0) < 0.08, qPrintable(QString::number(two.quantile(0.95))));
+        // A column that is a combination of J_0's adds nothing.
+        const NullGains none = projectionGainNull(J0, (2.0 * J0.col(0) - J0.col(1)).eval(), {b}, 50, 11);
+        QCOMPARE(none.rankExtra, 0);
+        QCOMPARE(none.quantile(0.95), 0.0);
+        // Coloured noise of the same variance makes the null of a slowly varying column wider.
+        NoiseBlock red = b;
+        red.phi = 0.95;
+        Eigen::MatrixXd slow(n, 1);
+        for (Eigen::Index i = 0; i < n; ++i) slow(i, 0) = std::cos(0.003 * static_cast<double>(i));
+        const double whiteQ = projectionGainNull(J0, slow, {b}, 2000, 5).quantile(0.95);
+        const double redQ = projectionGainNull(J0, slow, {red}, 2000, 5).quantile(0.95);
+        QVERIFY2(redQ > 5.0 * whiteQ, qPrintable(QString("%1 vs %2").arg(redQ).arg(whiteQ)));
+    }
+
+    void quantileOfEmptyAndEdges() {
+        NullGains g;
+        QCOMPARE(g.quantile(0.95), 0.0);
+        g.gains = {1, 2, 3, 4};
+        QCOMPARE(g.quantile(0.0), 1.0);
+        QCOMPARE(g.quantile(0.5), 2.0);
+        QCOMPARE(g.quantile(0.95), 4.0);
+        QCOMPARE(g.quantile(1.0), 4.0);
+    }
+};
+
+QTEST_APPLESS_MAIN(TestNoiseNull)
+#include "tst_noise_null.moc"
