@@ -146,8 +146,9 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--substeps", o->id.substeps, "prescribed: law steps per used sample")->capture_default_str();
     cmd->add_option("--multistarts", o->id.multistarts, "starting points per fit")->capture_default_str();
     cmd->add_option("--dynamics-residual", o->dynamicsResidual,
-                    "dynamics set-up: equation-error (default), auto (contact effects scored on re-initialised simulated segments; "
-                    "experimental: it found a backlash the synthetic D05 does not have) or segments")->capture_default_str();
+                    "dynamics set-up: equation-error (default: the law run along the measured slip, every effect applicable, "
+                    "+ the rig's equation of motion), auto (contact effects scored on re-initialised simulated segments; "
+                    "experimental) or segments")->capture_default_str();
     cmd->add_option("--max-segments", o->id.maxSegmentsPerRun, "segment residual: at most this many segments per run")
         ->capture_default_str();
     cmd->add_option("--seed", o->id.seed, "random seed (the loop is reproducible)")->capture_default_str();

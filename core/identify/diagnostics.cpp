@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 
@@ -239,6 +240,19 @@ PairedTest pairedLogRatioTest(const std::vector<double>& before, const std::vect
     r.t = se > 0 ? mean / se : (mean > 0 ? std::numeric_limits<double>::infinity()
                                          : mean < 0 ? -std::numeric_limits<double>::infinity() : 0.0);
     r.pValue = std::isinf(r.t) ? (r.t > 0 ? 0.0 : 1.0) : studentTSurvival(r.t, k - 1.0);
+    if (d.size() <= 20) {
+        const double observed = std::accumulate(d.begin(), d.end(), 0.0);
+        const uint32_t patterns = 1u << d.size();
+        uint32_t atLeast = 0;
+        for (uint32_t m = 0; m < patterns; ++m) {
+            double sum = 0;
+            for (size_t i = 0; i < d.size(); ++i) sum += ((m >> i) & 1u) ? -std::abs(d[i]) : std::abs(d[i]);
+            if (sum >= observed - 1e-12 * (std::abs(observed) + 1.0)) ++atLeast;
+        }
+        r.exactP = static_cast<double>(atLeast) / static_cast<double>(patterns);
+    } else {
+        r.exactP = std::numeric_limits<double>::quiet_NaN();
+    }
     return r;
 }
 

@@ -95,11 +95,17 @@ double studentTQuantile(double p, double dof);
 // unit, so runs with different error scales weigh alike. One-sided t statistic
 // t = mean(d) / (sd(d)/√K) with K−1 degrees of freedom; p = P(T_{K−1} > t). K < 2: no test
 // (units < 2, t = NaN, p = NaN).
+// Also the exact sign-flip (Fisher–Pitman permutation) test of the same statistic, which needs
+// no normality: p = share of the 2^K sign patterns s with Σ s_i |d_i| ≥ Σ d_i (K ≤ 20; NaN
+// above). It is the right test when the runs improve by very different amounts (one run's
+// large gain inflates sd(d) and can sink the t-test although every run improved), but its
+// smallest p is 2^−K: with K ≤ 4 it can never reach 5 %.
 struct PairedTest {
     int units = 0;
     double meanLogRatio = 0;  // mean d (> 0: after is better)
     double t = 0;
-    double pValue = 1;        // one-sided
+    double pValue = 1;        // one-sided, t-test
+    double exactP = 1;        // one-sided, sign-flip permutation test
 };
 PairedTest pairedLogRatioTest(const std::vector<double>& before, const std::vector<double>& after);
 

@@ -139,16 +139,19 @@ std::string renderHtmlReport(const IdentifyResult& r) {
               << "</td><td>" << fmt(p.stderr_) << "</td><td>" << fmt(e.deltaBic, "%.1f") << "</td><td class=l>" << htmlEscape(ptr)
               << "</td></tr>\n";
     }
-    o << "</table>\n<h3>Candidates</h3><p>Added only if &Delta;BIC &lt; &minus;margin, the held-out error is lower "
+    o << "</table>\n<h3>Candidates</h3><p>Added only if &Delta;BIC &lt; &minus;" << fmt(r.bicMargin, "%g")
+      << ", the gain in the sum of squares exceeds the " << fmt(100.0 * (1.0 - r.nullAlpha), "%g") << " % quantile of what "
+      << r.nullReplicas << " noise replicas of these runs give (AR(1) noise of the residual's level and colour), the held-out error is lower "
          "consistently over the held-out runs (paired t-test, one-sided p &lt; " << fmt(r.heldOutAlpha, "%g")
       << ") and the size parameter is more than t<sub>K&minus;1</sub> jackknife standard errors from where the effect vanishes "
          "(level " << fmt(r.identifiabilityAlpha, "%g") << ").</p><table><tr><th>effect</th><th>round</th><th>&Delta;BIC</th>"
-         "<th>fit NRMSE</th><th>held-out NRMSE</th><th>paired p</th><th>|size &minus; vanishing value| / s.e.</th><th>t crit.</th>"
+         "<th>fit NRMSE</th><th>gain / noise quantile</th><th>held-out NRMSE</th><th>paired p</th><th>|size &minus; vanishing value| / s.e.</th><th>t crit.</th>"
          "<th>verdict</th></tr>\n";
     for (const CandidateScore& c : r.candidates) {
         const bool ho = c.heldOutUnits > 0, sz = !c.sizeParam.empty() && c.sizeStderr > 0;
         o << "<tr><td class=l>" << htmlEscape(c.name) << "</td><td>" << c.round << "</td><td>"
           << (c.applicable ? fmt(c.deltaBic, "%.1f") : "&ndash;") << "</td><td>" << (c.applicable ? fmt(c.fitNrmse) : "&ndash;")
+          << "</td><td>" << (c.nullReplicas > 0 && c.nullGain > 0 ? fmt(c.gain / c.nullGain, "%.3g") : "&ndash;")
           << "</td><td>" << (c.heldOutNrmse >= 0 ? fmt(c.heldOutNrmse) : "&ndash;") << "</td><td>"
           << (ho && c.heldOutP >= 0 ? fmt(c.heldOutP, "%.3g") : "&ndash;") << "</td><td>"
           << (sz ? fmt(std::abs(c.sizeValue - c.sizeNull) / c.sizeStderr, "%.2f") : "&ndash;") << "</td><td>"

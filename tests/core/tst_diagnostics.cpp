@@ -59,6 +59,29 @@ private slots:
         QVERIFY(std::abs(mixed.t - t) < 1e-12);
         QVERIFY(std::abs(mixed.pValue - studentTSurvival(t, 3)) < 1e-15);
         QVERIFY(mixed.pValue > 0.05);  // one worse unit out of four: not significant
+        // Exact sign-flip test. The mixed case: |d| = ln1.5, ln1.1, ln(1/0.9), ln1.2; of the 16 sign
+        // patterns, those whose sum is ≥ the observed one (only ln 0.9 negative) are counted
+        // by brute force here.
+        {
+            const double ad[4] = {std::log(1.5), std::log(1.1), std::log(1.0 / 0.9), std::log(1.2)};
+            const double obs = std::log(1.5) + std::log(1.1) + std::log(0.9) + std::log(1.2);
+            int n = 0;
+            for (int pat = 0; pat < 16; ++pat) {
+                double sum = 0;
+                for (int i = 0; i < 4; ++i) sum += ((pat >> i) & 1) ? -ad[i] : ad[i];
+                if (sum >= obs - 1e-12) ++n;
+            }
+            QCOMPARE(mixed.exactP, n / 16.0);
+            QCOMPARE(n, 3);  // all +, only the smallest flipped, only ln(1/0.9) flipped
+        }
+        // Every one of five runs better, by very different amounts (D03's frictional lag): the
+        // t-test is not significant, the exact test gives its smallest p, 1/32.
+        const PairedTest hetero = pairedLogRatioTest({std::exp(0.39), std::exp(0.11), std::exp(0.08), std::exp(1.39), std::exp(0.08)},
+                                                     {1, 1, 1, 1, 1});
+        QVERIFY(hetero.pValue > 0.05);
+        QCOMPARE(hetero.exactP, 1.0 / 32.0);
+        // Beyond 20 units no enumeration: NaN.
+        QVERIFY(std::isnan(pairedLogRatioTest(std::vector<double>(21, 2.0), std::vector<double>(21, 1.0)).exactP));
         // Missing units are skipped; fewer than two: no test.
         QCOMPARE(pairedLogRatioTest({1, 0, 2}, {0.5, 1, 1}).units, 2);
         QVERIFY(std::isnan(pairedLogRatioTest({1}, {0.5}).pValue));

@@ -19,7 +19,7 @@ struct DirectionAsymmetry {
                 "slip. The paper's law is odd in V.",
                 "Residual of one sign during positive slip and the other during negative slip: a "
                 "strong correlation with sign(V), weak with |V|.",
-                {{"mu_pos_minus_mu_neg", "-", 0.0, -0.3, 0.3, false}},
+                {{"mu_pos_minus_mu_neg", "-", 0.0, -0.3, 0.3, false, 0.0, true}},
                 {"signV"},
                 {true, true}};
     }

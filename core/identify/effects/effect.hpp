@@ -21,6 +21,15 @@ struct EffectParam {
     // credits an effect only if its size differs from this by more than its honest
     // uncertainty. +infinity (a stiffness): the test is made on the compliance 1/value.
     double vanishing = 0;
+    // A coefficient in units of μ (a shift of the friction coefficient, per unit of something):
+    // its start and bounds are multiplied by max(1, |μ̂|) of the baseline, since a device whose
+    // reference load is not the normal force (a band tension) has μ, and every shift of it,
+    // "per unit reference load" (μ̂ = 77 on the friction damper).
+    bool muUnits = false;
+    // The baseline parameter this one continues beyond its baseline range (viscous_damping's ζ
+    // continues the rig's ζ): the candidate fit starts from the baseline's value, where the
+    // two models agree, instead of `initial`.
+    const char* continues = nullptr;
 };
 
 // Which set-ups an effect can act in.

@@ -20,7 +20,7 @@ struct NormalLoadMu {
                 "proportional to t_N with one mu for every load.",
                 "Residual whose mean level during slip differs from run to run in step with t_N: it "
                 "correlates with t_N and with the run index, not with V inside a run.",
-                {{"dmu_dtN_per_N", "1/N", 0.0, -0.1, 0.1, false}},
+                {{"dmu_dtN_per_N", "1/N", 0.0, -0.1, 0.1, false, 0.0, true}},
                 {"tN", "run_index"},
                 {true, true}};
     }

@@ -28,7 +28,7 @@ struct StickHealing {
                 "healing: its state variable does not evolve while stuck.",
                 "Residual peaks at the onset of slip whose size grows with the preceding time stuck: "
                 "correlation with 'time stuck before slip', near zero in steady sliding.",
-                {{"dmu_static", "-", 0.02, 0.0, 0.5, false},
+                {{"dmu_static", "-", 0.02, 0.0, 0.5, false, 0.0, true},
                  {"tau_heal_s", "s", 0.05, 1e-3, 5.0, true},
                  {"Dh_m", "m", 1e-4, 1e-6, 1e-2, true}},
                 {"time_stuck_before_slip"},

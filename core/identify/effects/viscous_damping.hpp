@@ -33,7 +33,7 @@ struct ViscousDamping {
                 "prescribed-slip device it is a force c*V in parallel with the friction.",
                 "Residual proportional to the velocity: in the equation of motion (F - m x'' - k x) "
                 "correlates with the slider velocity; in the friction channel with V.",
-                {{"zeta", "-", 0.02, 0.0, 2.0, false}},
+                {{"zeta", "-", 0.02, 0.0, 2.0, false, 0.0, false, "zeta"}},
                 {"V", "eom_slider_velocity"},
                 {true, true}};
     }

@@ -21,7 +21,7 @@ struct WearDrift {
                 "Slow trend of the residual with the accumulated slip distance (and so with run "
                 "index and cycle index), with the sign of the force: the residual times sign(V) "
                 "drifts.",
-                {{"dmu_ds_per_m", "1/m", 0.0, -1.0, 1.0, false}},
+                {{"dmu_ds_per_m", "1/m", 0.0, -1.0, 1.0, false, 0.0, true}},
                 {"accumulated_slip", "cycle_index", "run_index"},
                 {true, true}};
     }

@@ -1,0 +1,358 @@
+// Fitting a model of the loop (baseline or with candidates) on the prepared runs, its held-out errors
+// and the diagnostics of its residual.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <thread>
+
+#include "../integrate/dynamics.hpp"
+#include "identify_internal.hpp"
+
+namespace stickslip::identify::detail {
+
+// Parameters of the model `spec`: baseline free law parameters, m* (dynamics), effect params.
+std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const std::map<std::string, double>& start) {
+    std::vector<FitParameter> ps;
+    const SetupKind setup = cx.anyDynamics ? SetupKind::Dynamics : SetupKind::Prescribed;
+    // The segment residual resolves stick, where the contact stiffness ε_T acts: ε_T is then
+    // part of the baseline (held fixed, every stick-phase candidate would be credited with
+    // the baseline's wrong stiffness).
+    std::vector<std::string> freeLaw = cx.opt->freeLaw;
+    if (spec.segments && std::find(freeLaw.begin(), freeLaw.end(), "epsT") == freeLaw.end()) freeLaw.push_back("epsT");
+    for (const std::string& n : freeLaw) {
+        FitParameter p;
+        if (!defaultParameter(n, setup, p)) continue;
+        auto it = start.find(n);
+        p.value = it != start.end() ? it->second : lawValue(cx.opt->start, n);
+        p.value = std::clamp(p.value, p.lower, p.upper);
+        ps.push_back(p);
+    }
+    if (cx.anyDynamics && cx.opt->fitMass) {
+        FitParameter p{"m", 0.53, 0.05, 5.0, true, ParamScale::Log};
+        auto it = start.find("m");
+        if (it != start.end()) p.value = it->second;
+        ps.push_back(p);
+    }
+    const bool dampingEffect = std::find(spec.effects.begin(), spec.effects.end(), "viscous_damping") != spec.effects.end();
+    if (cx.anyDynamics && !dampingEffect) {
+        FitParameter p{"zeta", cx.opt->zetaNominal, ViscousDamping::kBaselineMin, ViscousDamping::kBaselineMax, true,
+                       ParamScale::Log};
+        auto it = start.find("zeta");
+        if (it != start.end()) p.value = it->second;
+        p.value = std::clamp(p.value, p.lower, p.upper);
+        ps.push_back(p);
+    }
+    for (const std::string& e : spec.effects) {
+        EffectInfo info;
+        findEffect(e, info);
+        for (const EffectParam& q0 : info.params) {
+            const EffectParam q = scaledParam(q0, cx.muScale);
+            FitParameter p{e + "." + q.name, q.initial, q.lower, q.upper, true, q.logScale ? ParamScale::Log : ParamScale::Linear};
+            auto it = start.find(p.name);
+            if (it != start.end()) p.value = it->second;
+            ps.push_back(p);
+        }
+    }
+    return ps;
+}
+
+FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
+                   const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness) {
+    FitOutcome out;
+    FitProblem prob;
+    prob.parameters = parameters(cx, spec, start);
+    // Baseline: the contact stiffness and the state distance set where the force turns after a
+    // reversal and how fast it settles; their costs have narrow valleys a local solver does not
+    // leave, so each is scanned on a log grid over its physical bounds first (fit.hpp).
+    if (scanStiffness)
+        for (const FitParameter& fp : prob.parameters) {
+            if (!fp.free || (fp.name != "epsT" && fp.name != "Dc")) continue;
+            const double lo = fp.name == "epsT" ? std::max(fp.lower, 1e3) : std::max(fp.lower, 1e-7);
+            const double hi = fp.name == "epsT" ? std::min(fp.upper, 1e8) : std::min(fp.upper, 1e-2);
+            const int nGrid = fp.name == "epsT" ? 26 : 11;
+            ParameterScan sc{fp.name, {}};
+            for (int k = 0; k < nGrid; ++k) sc.values.push_back(lo * std::pow(hi / lo, k / (nGrid - 1.0)));
+            prob.scans.push_back(sc);
+        }
+    prob.residualCount = residualCount(cx, idx);
+    prob.multistarts = multistarts;
+    prob.seed = cx.opt->seed;
+    prob.cancel = cx.opt->cancel;
+    // Warm-started refits (a candidate on top of the current model, a leave-one-run-out fit)
+    // start next to their optimum: 20 iterations. The cost tolerance 1e-6 is far below what the
+    // selection resolves (the noise null's quantile is ~1e-4 of the cost on the synthetic sets).
+    prob.maxIterations = scanStiffness ? 40 : 20;
+    prob.functionTolerance = 1e-6;
+    prob.parameterTolerance = 1e-6;
+    const auto names = [&] {
+        std::vector<std::string> v;
+        for (const auto& p : prob.parameters) v.push_back(p.name);
+        return v;
+    }();
+    prob.residuals = [&cx, &spec, &idx, names](const std::vector<double>& pv, std::vector<double>& r) {
+        std::map<std::string, double> vals;
+        for (size_t i = 0; i < names.size(); ++i) vals[names[i]] = pv[i];
+        double mass = kNaN;
+        const ExtendedModel m = buildModel(cx, spec, vals, mass);
+        r.clear();
+        for (size_t i : idx) {
+            double ss = 0, n = 0;
+            if (!runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments)) return false;
+        }
+        return true;
+    };
+    // The 2p points of a numeric Jacobian as (point, run) tasks over the cores; each task writes
+    // its own slice, so the result does not depend on the scheduling.
+    std::vector<size_t> offsets;
+    {
+        size_t o = 0;
+        for (size_t i : idx) {
+            offsets.push_back(o);
+            o += cx.runs[i].size() * (cx.runs[i].run->setup == SetupKind::Dynamics ? 2 : 1);
+        }
+    }
+    prob.batchResiduals = [&cx, &spec, &idx, names, offsets](const std::vector<std::vector<double>>& points,
+                                                             std::vector<std::vector<double>>& rs, std::vector<char>& okOut) {
+        const size_t nRuns = idx.size(), nTasks = points.size() * nRuns;
+        std::vector<ExtendedModel> models(points.size());
+        std::vector<double> masses(points.size(), kNaN);
+        for (size_t pt = 0; pt < points.size(); ++pt) {
+            std::map<std::string, double> vals;
+            for (size_t i = 0; i < names.size(); ++i) vals[names[i]] = points[pt][i];
+            models[pt] = buildModel(cx, spec, vals, masses[pt]);
+        }
+        rs.resize(points.size());
+        std::vector<char> ok(nTasks, 0);
+        std::atomic<size_t> next{0};
+        auto work = [&]() {
+            for (size_t t = next.fetch_add(1); t < nTasks; t = next.fetch_add(1)) {
+                const size_t pt = t / nRuns, k = t % nRuns;
+                std::vector<double> r;
+                double ss = 0, n = 0;
+                if (!runResiduals(cx, cx.runs[idx[k]], models[pt], masses[pt], r, ss, n, nullptr, nullptr, nullptr,
+                                  spec.segments))
+                    continue;
+                std::copy(r.begin(), r.end(), rs[pt].begin() + static_cast<long>(offsets[k]));
+                ok[t] = 1;
+            }
+        };
+        const size_t workers = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()), nTasks);
+        std::vector<std::thread> pool;
+        for (size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+        work();
+        for (std::thread& th : pool) th.join();
+        okOut.assign(points.size(), 1);
+        for (size_t t = 0; t < nTasks; ++t)
+            if (!ok[t]) okOut[t / nRuns] = 0;
+    };
+    ++fits;
+    out.fit = fitLeastSquares(prob);
+    if (!out.fit.ok()) {
+        out.message = out.fit.message;
+        return out;
+    }
+    out.ok = true;
+    for (size_t i = 0; i < out.fit.names.size(); ++i) {
+        out.values[out.fit.names[i]] = out.fit.values[i];
+        if (out.fit.free[i]) {
+            out.estimates.push_back({out.fit.names[i], out.fit.values[i], out.fit.stderrs[i]});
+            ++out.nFree;
+        }
+    }
+    double mass = kNaN;
+    const ExtendedModel m = buildModel(cx, spec, out.values, mass);
+    std::vector<double> r;
+    for (size_t i : idx) {
+        double ss = 0, n = 0;
+        runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments);
+        out.ss += ss;
+        out.count += n;
+    }
+    return out;
+}
+
+// Per-run errors of a fitted model: in-sample for the fit runs, prediction for validation
+// runs; held-out errors by leave-one-run-out (fit runs) when there are no validation runs.
+// `loo` (optional): the parameter values of each leave-one-run-out fit (for the jackknife).
+ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
+                     const std::vector<size_t>& valIdx, long& fits,
+                     std::vector<std::map<std::string, double>>* loo) {
+    ModelErrors me;
+    double mass = kNaN;
+    const ExtendedModel m = buildModel(cx, spec, full.values, mass);
+    double fitSS = 0, fitN = 0, valSS = 0, valN = 0;
+    for (size_t i = 0; i < cx.runs.size(); ++i) {
+        const bool isVal = std::find(valIdx.begin(), valIdx.end(), i) != valIdx.end();
+        std::vector<double> r, fr;
+        std::vector<char> used;
+        double ss = 0, n = 0;
+        runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, &used, &fr, spec.segments);
+        RunError e;
+        e.file = cx.runs[i].run->file;
+        e.role = isVal ? "validation" : "fit";
+        e.nrmse = n > 0 ? std::sqrt(ss / n) : 0.0;
+        double fs = 0, fn = 0;
+        for (size_t k = 0; k < fr.size(); ++k)
+            if (used[k]) { fs += fr[k] * fr[k]; fn += 1; }
+        e.rms_N = fn > 0 ? std::sqrt(fs / fn) : 0.0;
+        if (isVal) {
+            e.heldOutNrmse = e.nrmse;
+            valSS += ss; valN += n;
+        } else {
+            fitSS += ss; fitN += n;
+        }
+        me.runs.push_back(e);
+    }
+    me.fitNrmse = fitN > 0 ? std::sqrt(fitSS / fitN) : 0.0;
+    if (valIdx.empty() && fitIdx.size() >= 2) {
+        // Leave one run out in turn, warm-started from the full fit.
+        for (size_t h : fitIdx) {
+            if (cx.opt->cancel && cx.opt->cancel->load()) break;
+            std::vector<size_t> rest;
+            for (size_t i : fitIdx) if (i != h) rest.push_back(i);
+            const FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, fits);
+            if (!f.ok) continue;
+            if (loo) loo->push_back(f.values);
+            double mh = kNaN;
+            const ExtendedModel mo = buildModel(cx, spec, f.values, mh);
+            std::vector<double> r;
+            double ss = 0, n = 0;
+            if (!runResiduals(cx, cx.runs[h], mo, mh, r, ss, n, nullptr, nullptr, nullptr, spec.segments)) continue;
+            me.runs[h].heldOutNrmse = n > 0 ? std::sqrt(ss / n) : 0.0;
+            valSS += ss; valN += n;
+        }
+    }
+    me.validationNrmse = valN > 0 ? std::sqrt(valSS / valN) : kNaN;
+    return me;
+}
+
+// Diagnostics of a fitted model's force residual (friction channel, samples compared).
+Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds) {
+    double mass = kNaN;
+    const ExtendedModel m = buildModel(cx, spec, f.values, mass);
+    std::vector<DiagnosticRun> dr;
+    for (size_t i = 0; i < cx.runs.size(); ++i) {
+        const Prepared& p = cx.runs[i];
+        std::vector<double> r, fr, pred;
+        std::vector<char> used;
+        double ss = 0, n = 0;
+        runResiduals(cx, p, m, mass, r, ss, n, &pred, &used, &fr, spec.segments);
+        if (preds) preds->push_back(pred);
+        DiagnosticRun d;
+        d.t_s = p.t;
+        d.residual = fr;
+        d.slip_m = p.g;
+        d.relVel_mps = p.V;
+        d.accel_mps2 = p.a;
+        d.normalForce_N = p.run->normalForce_N;
+        d.forcingFrequency_Hz = p.run->frequency_Hz;
+        d.accumulatedSlipStart_m = p.run->slipBefore_m;
+        d.runIndex = static_cast<int>(i);
+        dr.push_back(std::move(d));
+    }
+    const double fs = cx.runs.empty() || cx.runs[0].size() < 2 ? 1.0 : 1.0 / (cx.runs[0].t[1] - cx.runs[0].t[0]);
+    // Decimate to about 2× the 100 Hz measurement bandwidth before the whiteness test.
+    const int dec = std::max(1, static_cast<int>(std::floor(fs / 200.0)));
+    Diagnostics d = diagnose(dr, dec, cx.opt->stickVelocity_mps);
+    if (cx.anyDynamics) {
+        // Equation-of-motion channel: its residual against the slider velocity and acceleration
+        // (where rig damping and sensor inertia show).
+        std::vector<double> rr, xd, xa;
+        const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
+        const double ms = m.effects.sensorInertia ? m.effects.sensorInertia->mass_kg : 0.0;
+        for (const Prepared& p : cx.runs) {
+            if (p.run->setup != SetupKind::Dynamics) continue;
+            const double mm = std::isfinite(mass) ? mass : p.run->nominalMass_kg;
+            const double c = 2.0 * zeta * std::sqrt(p.run->stiffness_N_per_m * mm);
+            for (size_t i = 0; i < p.size(); ++i) {
+                rr.push_back(p.F[i] - ((mm + ms) * p.a[i] + c * p.xd[i] + p.run->stiffness_N_per_m * p.x[i]));
+                xd.push_back(p.xd[i]);
+                xa.push_back(p.a[i]);
+            }
+        }
+        d.correlations.push_back({"eom_slider_velocity", pearson(rr, xd)});
+        d.correlations.push_back({"eom_slider_accel", pearson(rr, xa)});
+    }
+    return d;
+}
+
+// Baseline start from the data: μ from the median |F|/t_N while sliding fast (|V| above half
+// its peak), and the other coefficients of the starting law scaled with it (they are all
+// "per unit normal load", so a device whose reference load is a band tension has them all
+// large together).
+std::map<std::string, double> baselineStart(const Context& cx, const std::vector<size_t>& fitIdx) {
+    std::vector<double> ratio;
+    for (size_t i : fitIdx) {
+        const Prepared& p = cx.runs[i];
+        double vmax = 0;
+        for (double v : p.V) vmax = std::max(vmax, std::abs(v));
+        for (size_t k = 0; k < p.size(); ++k)
+            if (std::abs(p.V[k]) > 0.5 * vmax && p.run->normalForce_N > 0) ratio.push_back(std::abs(p.F[k]) / p.run->normalForce_N);
+    }
+    std::map<std::string, double> st;
+    const RateStateParams& s0 = cx.opt->start;
+    if (ratio.empty() || !(s0.mu > 0)) return st;
+    std::nth_element(ratio.begin(), ratio.begin() + static_cast<long>(ratio.size() / 2), ratio.end());
+    const double mu0 = ratio[ratio.size() / 2];
+    if (!(mu0 > 0) || !std::isfinite(mu0)) return st;
+    const double scale = mu0 / s0.mu;
+    st["mu"] = mu0;
+    st["C1"] = s0.C1 * scale;
+    st["eta"] = s0.eta_s_per_m * scale;
+    return st;
+}
+
+// Start values of an effect's parameters on top of `cur`: each log-scale parameter in turn
+// is scanned over 9 log-spaced values across its bounds (and its default start), the others
+// held, and the fit starts at the lowest cost. A gradient fit from one default start
+// otherwise stops in the local minimum next to it (a 0.2 mm dead band from a 50 µm start).
+// The scan is joint with each free baseline contact parameter (D_c and ε_T, 11 log values each,
+// and their current values): the baseline has already used them to mimic what the effect does
+// — on D03 a state distance of 133 µm stood in for a 7 ms lag, and the lag scanned at that D_c
+// ended on its lower bound — so the effect alone, from the baseline's point, finds nothing.
+std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, const std::string& effect,
+                                           std::map<std::string, double> vals, const std::vector<size_t>& idx) {
+    EffectInfo info;
+    findEffect(effect, info);
+    for (const EffectParam& q : info.params) {
+        const auto from = q.continues ? vals.find(q.continues) : vals.end();
+        vals[effect + "." + q.name] = from != vals.end() ? from->second : scaledParam(q, cx.muScale).initial;
+    }
+    const std::vector<FitParameter> ps = parameters(cx, s2, vals);
+    for (const EffectParam& q0 : info.params) {
+        const EffectParam q = scaledParam(q0, cx.muScale);
+        if (!q.logScale || !(q.lower > 0)) continue;
+        const std::string key = effect + "." + q.name;
+        // Points: (effect value, partner, partner value); partner "" = effect alone.
+        struct Point { double v; std::string partner; double pv; };
+        std::vector<Point> pts = {{vals[key], "", 0.0}};
+        std::vector<double> grid;
+        for (int k = 0; k < 9; ++k) grid.push_back(q.lower * std::pow(q.upper / q.lower, k / 8.0));
+        for (double v : grid) pts.push_back({v, "", 0.0});
+        for (const FitParameter& fp : ps) {
+            if (!fp.free || (fp.name != "Dc" && fp.name != "epsT")) continue;
+            const double lo = fp.name == "epsT" ? std::max(fp.lower, 1e3) : std::max(fp.lower, 1e-7);
+            const double hi = fp.name == "epsT" ? std::min(fp.upper, 1e8) : std::min(fp.upper, 1e-2);
+            for (int j = 0; j < 11; ++j)
+                for (double v : grid) pts.push_back({v, fp.name, lo * std::pow(hi / lo, j / 10.0)});
+        }
+        std::vector<double> cs(pts.size(), std::numeric_limits<double>::infinity());
+        parallelFor(pts.size(), [&](size_t k) {
+            std::map<std::string, double> v = vals;
+            v[key] = pts[k].v;
+            if (!pts[k].partner.empty()) v[pts[k].partner] = pts[k].pv;
+            cs[k] = evalSS(cx, s2, v, idx);
+        });
+        size_t best = 0;  // the lowest wins (ties: the first, i.e. the current point)
+        for (size_t k = 1; k < pts.size(); ++k)
+            if (cs[k] < cs[best]) best = k;
+        vals[key] = pts[best].v;
+        if (!pts[best].partner.empty()) vals[pts[best].partner] = pts[best].pv;
+    }
+    return vals;
+}
+
+}  // namespace stickslip::identify::detail

@@ -1,0 +1,156 @@
+// Internal pieces of the identify loop (identify.hpp), shared by its translation units:
+// run preparation (identify_prepare.cpp), residuals (identify_residuals.cpp), fits and
+// held-out errors (identify_fit.cpp), selection tests (identify_selection.cpp), the loop itself
+// (identify.cpp) and the report (identify_report.cpp). Not part of the public API.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "fit.hpp"
+#include "identify.hpp"
+#include "noise_null.hpp"
+
+namespace stickslip::identify::detail {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A run prepared for fast repeated evaluation: decimated samples, weights.
+struct Prepared {
+    const IdentifyRun* run = nullptr;
+    std::vector<double> t, g, V, F, a, x, xd;
+    double invRmsF = 1.0;
+    Sos predictionFilter;  // the run's cleaning filters at the decimated rate (those below its Nyquist)
+    // The prediction y as the cleaned measurement would show it: F + filter(mask·(y − F)), the
+    // difference taken only where the prediction applies (mask; all samples when null), so the
+    // stick phases that are not compared cannot leak into compared samples.
+    std::vector<double> filtered(const std::vector<double>& y, const std::vector<char>* mask = nullptr) const {
+        if (predictionFilter.empty()) return y;
+        std::vector<double> d(y.size(), 0.0);
+        for (size_t i = 0; i < y.size(); ++i)
+            if (!mask || (*mask)[i]) d[i] = y[i] - F[i];
+        d = filtfiltZeroExtended(predictionFilter, d);
+        for (size_t i = 0; i < y.size(); ++i) d[i] += F[i];
+        return d;
+    }
+    // Dynamics, segment residual: smoothed slider state, cleaned stage motion, slip so far,
+    // segments [first, last] of samples (each starts mid-slide).
+    std::vector<double> xs, vs, u, Vs, cumSlip;
+    std::vector<std::pair<size_t, size_t>> segments;
+    double invRmsX = 1.0;
+    bool stageHarmonic = false;
+    double uc0 = 0, ua = 0, ub = 0, omega = 0;  // u = uc0 + ua cos ωt + ub sin ωt when harmonic
+    size_t size() const { return t.size(); }
+    double stageAt(double tt) const {
+        if (stageHarmonic) return uc0 + ua * std::cos(omega * tt) + ub * std::sin(omega * tt);
+        const double dt = t[1] - t[0];
+        const double q = std::clamp((tt - t.front()) / dt, 0.0, static_cast<double>(t.size() - 1));
+        const size_t i = std::min(static_cast<size_t>(q), t.size() - 2);
+        const double w = q - static_cast<double>(i);
+        return u[i] * (1.0 - w) + u[i + 1] * w;
+    }
+};
+
+// The model (effects, in order added) and how its dynamics residual is formed.
+struct Spec {
+    std::vector<std::string> effects;   // catalogue names, in order added
+    bool segments = false;              // dynamics: segment simulation instead of equation error
+};
+
+struct Context {
+    std::vector<Prepared> runs;
+    const IdentifyOptions* opt = nullptr;
+    bool anyDynamics = false;
+    double tNref = 1.0;
+    double muScale = 1.0;  // the baseline's μ̂, for effect parameters in units of μ (scaledParam)
+};
+
+struct FitOutcome {
+    bool ok = false;
+    std::string message;
+    std::map<std::string, double> values;
+    std::vector<ParamEstimate> estimates;
+    double ss = 0, count = 0;   // over the fitted runs
+    int nFree = 0;
+    FitResult fit;
+};
+
+// fn(i) for i in [0, n) on every core (each i writes only its own results, so the outcome does
+// not depend on the scheduling).
+template <class Fn>
+void parallelFor(size_t n, Fn&& fn) {
+    std::atomic<size_t> next{0};
+    auto work = [&]() {
+        for (size_t i = next.fetch_add(1); i < n; i = next.fetch_add(1)) fn(i);
+    };
+    const size_t workers = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()), n);
+    std::vector<std::thread> pool;
+    for (size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+}
+
+// An effect parameter with its start and bounds in the units of this data set (EffectParam::muUnits).
+inline EffectParam scaledParam(EffectParam q, double muScale) {
+    if (q.muUnits) {
+        const double k = std::max(1.0, std::abs(muScale));
+        q.initial *= k;
+        q.lower *= k;
+        q.upper *= k;
+    }
+    return q;
+}
+
+inline bool actsInStick(const std::string& effect) {
+    return effect == "backlash" || effect == "presliding_compliance" || effect == "stick_healing";
+}
+
+void applyLaw(RateStateParams& p, const std::string& name, double v);
+double lawValue(const RateStateParams& p, const std::string& name);
+ExtendedModel buildModel(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, double& mass);
+bool segmentResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, double mass, std::vector<double>& r,
+                      double& ss, double& count, std::vector<double>* predicted, std::vector<char>* used,
+                      std::vector<double>* frictionResidual);
+bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, double mass, std::vector<double>& r,
+                  double& ss, double& count, std::vector<double>* predicted, std::vector<char>* used,
+                  std::vector<double>* frictionResidual, bool segments);
+size_t residualCount(const Context& cx, const std::vector<size_t>& idx);
+bool residualVector(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
+                    const std::vector<size_t>& idx, std::vector<double>& r, std::vector<NoiseBlock>* blocks = nullptr);
+Eigen::MatrixXd residualJacobian(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
+                                 const std::vector<size_t>& idx, const std::vector<FitParameter>& params,
+                                 const std::vector<std::string>& which, size_t rows);
+double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx);
+
+std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const std::map<std::string, double>& start);
+FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
+                   const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness = false);
+ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
+                     const std::vector<size_t>& valIdx, long& fits,
+                     std::vector<std::map<std::string, double>>* loo = nullptr);
+Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds);
+std::map<std::string, double> baselineStart(const Context& cx, const std::vector<size_t>& fitIdx);
+std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, const std::string& effect,
+                                           std::map<std::string, double> vals, const std::vector<size_t>& idx);
+
+void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& opt, Prepared& p);
+
+double bic(double ss, double n, double neffCap, int p);
+constexpr int kMinUnitsForTests = 3;  // runs needed for the paired test and the jackknife (≥ 2 degrees of freedom)
+bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fit, const ModelErrors& ref,
+                     const ModelErrors& with, const std::vector<std::map<std::string, double>>& loo,
+                     const std::vector<size_t>& units, double tauInt);
+
+Sos predictionFilterAt(const FilterSettings& fs, double rate_Hz);
+bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, Context& cx, int& decimation,
+                    std::string& why);
+
+}  // namespace stickslip::identify::detail

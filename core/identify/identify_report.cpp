@@ -1,0 +1,135 @@
+// The identify report as JSON (identify.hpp).
+#include <cmath>
+
+#include "identify.hpp"
+
+namespace stickslip::identify {
+
+namespace {
+
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json toJson(const std::vector<ParamEstimate>& ps) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const ParamEstimate& p : ps) j[p.name] = {{"value", num(p.value)}, {"stderr", num(p.stderr_)}};
+    return j;
+}
+
+nlohmann::json toJson(const ModelErrors& e) {
+    nlohmann::json runs = nlohmann::json::array();
+    for (const RunError& r : e.runs)
+        runs.push_back({{"file", r.file}, {"role", r.role}, {"rms_N", num(r.rms_N)}, {"nrmse", num(r.nrmse)},
+                        {"held_out_nrmse", num(r.heldOutNrmse)}});
+    return {{"fit_nrmse", num(e.fitNrmse)}, {"validation_nrmse", num(e.validationNrmse)}, {"runs", runs}};
+}
+
+}  // namespace
+
+nlohmann::json toJson(const Diagnostics& d, bool withSeries) {
+    nlohmann::json corr = nlohmann::json::object();
+    for (const SignalCorrelation& c : d.correlations) corr[c.signal] = num(c.correlation);
+    nlohmann::json j = {{"rms", num(d.rms)},
+                        {"correlations", corr},
+                        {"whiteness",
+                         {{"test", "Ljung-Box"},
+                          {"lags", d.whiteness.lags},
+                          {"decimation", d.whiteness.decimation},
+                          {"Q", num(d.whiteness.ljungBoxQ)},
+                          {"p_value", num(d.whiteness.pValue)},
+                          {"white", d.whiteness.white},
+                          {"structure_ratio", num(d.whiteness.structureRatio)},
+                          {"structure_ratio_limit", Whiteness::kStructureRatioLimit},
+                          {"structured", d.whiteness.structured}}},
+                        {"integrated_acf_time_samples", num(d.integratedAcfTime)},
+                        {"spectrum_harmonic_fraction", num(d.spectrum.harmonicFraction)},
+                        {"forcing_harmonics_Hz", d.spectrum.harmonics_Hz}};
+    if (withSeries) {
+        j["acf"] = d.whiteness.acf;
+        // Spectrum up to 150 Hz (the measurement bandwidth).
+        nlohmann::json f = nlohmann::json::array(), p = nlohmann::json::array();
+        for (size_t k = 0; k < d.spectrum.frequency_Hz.size() && d.spectrum.frequency_Hz[k] <= 150.0; ++k) {
+            f.push_back(d.spectrum.frequency_Hz[k]);
+            p.push_back(d.spectrum.power[k]);
+        }
+        j["spectrum"] = {{"frequency_Hz", f}, {"power", p}};
+    }
+    return j;
+}
+
+nlohmann::json toJson(const IdentifyResult& r) {
+    nlohmann::json j;
+    j["ok"] = r.ok;
+    if (!r.message.empty()) j["message"] = r.message;
+    j["setup"] = r.setup;
+    j["baseline"] = {{"model", "rate-state"}, {"parameters", toJson(r.baseline)}};
+    j["before"] = toJson(r.before);
+    j["after"] = toJson(r.after);
+    j["final_parameters"] = toJson(r.final);
+    nlohmann::json added = nlohmann::json::array();
+    for (const AddedEffect& e : r.effectsAdded) {
+        nlohmann::json pointed = nlohmann::json::object();
+        for (const SignalCorrelation& c : e.pointedBy) pointed[c.signal] = num(c.correlation);
+        added.push_back({{"name", e.name},
+                         {"parameters", toJson(e.params)},
+                         {"diagnostics", {{"correlations_before", pointed}}},
+                         {"delta_bic", num(e.deltaBic)},
+                         {"held_out_nrmse_before", num(e.heldOutBefore)},
+                         {"held_out_nrmse_after", num(e.heldOutAfter)}});
+    }
+    j["effects_added"] = added;
+    nlohmann::json cands = nlohmann::json::array();
+    for (const CandidateScore& c : r.candidates)
+        cands.push_back({{"name", c.name},
+                         {"round", c.round},
+                         {"applicable", c.applicable},
+                         {"accepted", c.accepted},
+                         {"score", {{"delta_bic", num(c.deltaBic)}, {"fit_nrmse", num(c.fitNrmse)},
+                                    {"held_out_nrmse", c.heldOutNrmse >= 0 ? num(c.heldOutNrmse) : nlohmann::json(nullptr)}}},
+                         {"residual", c.residual},
+                         {"held_out_test", c.heldOutUnits == 0 ? nlohmann::json(nullptr)
+                                                               : nlohmann::json{{"runs", c.heldOutUnits},
+                                                                                {"mean_log_mse_ratio", num(c.heldOutMeanLogRatio)},
+                                                                                {"t", num(c.heldOutT)},
+                                                                                {"p_one_sided", num(c.heldOutP)},
+                                                                                {"test", c.heldOutExact ? "exact sign-flip" : "paired t"},
+                                                                                {"log_mse_ratio_per_run", [&] {
+                                                                                     nlohmann::json a = nlohmann::json::array();
+                                                                                     for (double v : c.heldOutLogRatios) a.push_back(num(v));
+                                                                                     return a;
+                                                                                 }()}}},
+                         {"noise_null", c.nullReplicas == 0 ? nlohmann::json(nullptr)
+                                                            : nlohmann::json{{"gain", num(c.gain)},
+                                                                             {"null_quantile", num(c.nullGain)},
+                                                                             {"replicas", c.nullReplicas}}},
+                         {"size_test", c.sizeParam.empty() ? nlohmann::json(nullptr)
+                                                           : nlohmann::json{{"parameter", c.sizeParam},
+                                                                            {"value", num(c.sizeValue)},
+                                                                            {"vanishes_at", num(c.sizeNull)},
+                                                                            {"stderr", num(c.sizeStderr)},
+                                                                            {"stderr_kind", c.sizeStderrKind},
+                                                                            {"critical_t", num(c.sizeCritical)}}},
+                         {"parameters", toJson(c.params)},
+                         {"rejected_because", c.accepted ? nlohmann::json(nullptr) : nlohmann::json(c.reason)}});
+    j["candidates"] = cands;
+    j["diagnostics"] = {{"before", toJson(r.diagnosticsBefore, true)}, {"after", toJson(r.diagnosticsAfter, true)}};
+    j["unexplained"] = r.unexplained;
+    if (r.unexplained) j["unexplained_reason"] = r.unexplainedReason;
+    j["selection"] = {{"criterion", "BIC with n_eff = min(n / tau_int, slip episodes); an effect must lower it by more than "
+                                    "the margin AND lower the sum of squares by more than the (1 - null_alpha) quantile of "
+                                    "what noise replicas of these runs give (AR(1) per run and channel from the current "
+                                    "residual, linearised candidate model) AND lower the held-out NRMSE (leave-one-run-out, or the --validate-on runs) "
+                                    "consistently over the held-out runs (one-sided exact sign-flip test on ln MSE ratios when 2^-K < alpha, else the "
+                                    "paired t-test, p < alpha) "
+                                    "AND its size parameter must differ from its vanishing value by more than t_(K-1,1-alpha/2) "
+                                    "jackknife standard errors over the leave-one-run-out fits"},
+                      {"null_alpha", num(r.nullAlpha)}, {"null_replicas", r.nullReplicas}, {"bic_margin", num(r.bicMargin)},
+                      {"held_out_alpha", num(r.heldOutAlpha)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
+                      {"tau_int_samples", num(r.tauInt)},
+                      {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation},
+                      {"residual", r.residual}, {"segments", r.segmentsUsed}};
+    j["wall_time_s"] = r.wallTime_s;
+    j["fits"] = r.fits;
+    return j;
+}
+
+}  // namespace stickslip::identify

@@ -1,0 +1,288 @@
+// Residuals of a model on the prepared runs: the law channel (the extended law along the measured
+// slip), the equation-of-motion channel, the segment residual, and the Jacobian the noise null uses.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <thread>
+
+#include "../integrate/dynamics.hpp"
+#include "identify_internal.hpp"
+
+namespace stickslip::identify::detail {
+
+void applyLaw(RateStateParams& p, const std::string& name, double v) {
+    if (name == "mu") p.mu = v;
+    else if (name == "C1") p.C1 = v;
+    else if (name == "eta") p.eta_s_per_m = v;
+    else if (name == "Dc") p.Dc_m = v;
+    else if (name == "vc") p.vc_mps = v;
+    else if (name == "epsT") p.epsT_N_per_m = v;
+    else if (name == "r") p.r = v;
+}
+
+double lawValue(const RateStateParams& p, const std::string& name) {
+    if (name == "mu") return p.mu;
+    if (name == "C1") return p.C1;
+    if (name == "eta") return p.eta_s_per_m;
+    if (name == "Dc") return p.Dc_m;
+    if (name == "vc") return p.vc_mps;
+    if (name == "epsT") return p.epsT_N_per_m;
+    if (name == "r") return p.r;
+    return kNaN;
+}
+
+// Model from a flat map of values ("mu", "m", "frictional_lag.tau_s", …).
+ExtendedModel buildModel(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, double& mass) {
+    ExtendedModel m;
+    m.law = cx.opt->start;
+    for (const auto& [k, v] : vals) applyLaw(m.law, k, v);
+    m.tNref_N = cx.tNref;
+    for (const std::string& e : spec.effects) {
+        EffectInfo info;
+        findEffect(e, info);
+        std::vector<double> pv;
+        for (const auto& p : info.params) pv.push_back(vals.at(e + "." + p.name));
+        setEffect(m.effects, e, pv);
+    }
+    // Dynamics: the rig's damping ratio within the baseline's "very small" range, unless the
+    // viscous_damping effect (damping beyond it) is in the model.
+    auto z = vals.find("zeta");
+    if (z != vals.end() && !m.effects.viscousDamping) m.effects.viscousDamping = ViscousDamping{z->second};
+    auto it = vals.find("m");
+    mass = it != vals.end() ? it->second : kNaN;
+    return m;
+}
+
+// Residuals of one run appended to `r`; per-run sum of squares and count; predicted force.
+// Dynamics, Segments: re-initialised simulations (see DynamicsResidual in identify.hpp).
+// Residuals: n slider-displacement then n force entries (0 outside the segments).
+bool segmentResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, double mass, std::vector<double>& r,
+                      double& ss, double& count, std::vector<double>* predicted, std::vector<char>* used,
+                      std::vector<double>* frictionResidual) {
+    const IdentifyRun& run = *p.run;
+    const size_t n = p.size();
+    const size_t base = r.size();
+    r.resize(base + 2 * n, 0.0);
+    if (predicted) predicted->assign(n, kNaN);
+    if (used) used->assign(n, 0);
+    if (frictionResidual) frictionResidual->assign(n, 0.0);
+    if (n < 3) return true;
+    const double mm = std::isfinite(mass) ? mass : run.nominalMass_kg;
+    const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
+    const double ms = m.effects.sensorInertia ? m.effects.sensorInertia->mass_kg : 0.0;
+    const double tN = run.normalForce_N;
+    RigParams rig;
+    rig.normalForce_N = tN;
+    rig.stiffness_N_per_m = run.stiffness_N_per_m;
+    rig.mass_kg = mm;
+    rig.damping_Ns_per_m = 2.0 * zeta * std::sqrt(run.stiffness_N_per_m * mm);
+    const ExtendedLaw law = ExtendedLaw::make(m);
+    const int sub = std::max(1, cx.opt->segmentSubsteps);
+    const double h = (p.t[1] - p.t[0]) / sub;
+    const stickslip::detail::NewmarkConstants K(rig, law.epsT(), h);
+    const double C2 = m.law.C2();
+    for (const auto& [i0, i1] : p.segments) {
+        // Mid-slide start: slider state measured (smoothed), friction state at its sliding steady state.
+        DynState s;
+        s.t = p.t[i0];
+        s.x = p.xs[i0];
+        s.v = p.vs[i0];
+        s.u = p.stageAt(s.t);
+        const double V = p.Vs[i0], av = std::abs(V), sg = V >= 0 ? 1.0 : -1.0;
+        LawState L = law.initialState(RunContext{tN, run.slipBefore_m + p.cumSlip[i0]});
+        L.alpha = -C2 * av;
+        const double y = tN * (law.muEffective(L, sg, tN) + law.K1(L.alpha));
+        L.force_N = sg * (y + m.law.eta_s_per_m * tN * av);
+        L.aux[1] = 0.0;
+        L.aux[2] = y;
+        if (m.effects.backlash)  // play taken up on the side the force acts on: ε dz(w) = F
+            L.aux[3] = L.force_N / law.epsT() + (L.force_N >= 0 ? 1.0 : -1.0) * m.effects.backlash->halfWidth_m;
+        s.law = L;
+        s.stuck = false;
+        s.slipRate = av;
+        s.a = (L.force_N - rig.damping_Ns_per_m * s.v - rig.stiffness_N_per_m * s.x) / mm;
+        for (size_t i = i0 + 1; i <= i1; ++i) {
+            for (int k = 0; k < sub; ++k) {
+                int nIts = 0, lIts = 0;
+                const char* why = nullptr;
+                double bad = 0;
+                const double u1 = p.stageAt(s.t + h);
+                if (!stickslip::detail::newmarkStep(K, law, static_cast<int*>(nullptr), u1, s,
+                                                    stickslip::Coupling::Newton, nIts, lIts, why, bad))
+                    return false;
+            }
+            const double fSim = s.law.force_N + ms * s.a;
+            const double ex = (s.x - p.x[i]) * p.invRmsX, ef = (fSim - p.F[i]) * p.invRmsF;
+            r[base + i] = ex;
+            r[base + n + i] = ef;
+            ss += ex * ex + ef * ef;
+            count += 2;
+            if (predicted) (*predicted)[i] = fSim;
+            if (used) (*used)[i] = 1;
+            if (frictionResidual) (*frictionResidual)[i] = p.F[i] - fSim;
+        }
+    }
+    return true;
+}
+
+bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, double mass, std::vector<double>& r,
+                  double& ss, double& count, std::vector<double>* predicted, std::vector<char>* used,
+                  std::vector<double>* frictionResidual, bool segments) {
+    const IdentifyRun& run = *p.run;
+    RunContext ctx{run.normalForce_N, run.slipBefore_m};
+    const size_t n = p.size();
+    ss = 0;
+    count = 0;
+    if (predicted) predicted->assign(n, 0.0);
+    if (used) used->assign(n, 0);
+    if (frictionResidual) frictionResidual->assign(n, 0.0);
+    if (run.setup == SetupKind::Prescribed) {
+        const ExtendedTrace tr = simulateExtendedPrescribed(m, ctx, p.t, p.g, p.a.empty() ? nullptr : &p.a,
+                                                            cx.opt->substeps);
+        if (!tr.ok()) return false;
+        const std::vector<double> Fp = p.filtered(tr.measuredForce_N);
+        for (size_t i = 0; i < n; ++i) {
+            const double e = (Fp[i] - p.F[i]) * p.invRmsF;
+            r.push_back(e);
+            ss += e * e;
+            count += 1;
+            if (predicted) (*predicted)[i] = Fp[i];
+            if (used) (*used)[i] = 1;
+            if (frictionResidual) (*frictionResidual)[i] = p.F[i] - Fp[i];
+        }
+        return true;
+    }
+    if (segments) return segmentResiduals(cx, p, m, mass, r, ss, count, predicted, used, frictionResidual);
+    // Dynamics: law channel + equation-of-motion channel. The law channel runs the extended law
+    // (return map with ε_T and every effect, Eqs. 1–4) along the measured slip g = u − x, as in
+    // the prescribed set-up, and compares its force while the contact slides (|V| >= vStick, a
+    // set fixed by the data, not by the parameters). The law keeps its state through stick
+    // (elastic loading over ε_T, play, healing), so a compliant contact, a dead band or a
+    // healed strength shape the force after each reversal; inside stick the measured slip's
+    // noise times ε_T would swamp the comparison, and there the rig channel speaks instead.
+    ExtendedModel lawOnly = m;
+    lawOnly.effects.viscousDamping.reset();  // a rig effect here, in the equation of motion
+    const ExtendedTrace tr = simulateExtendedPrescribed(lawOnly, ctx, p.t, p.g, p.a.empty() ? nullptr : &p.a,
+                                                        cx.opt->substeps);
+    if (!tr.ok()) return false;
+    const double vStick = cx.opt->stickVelocity_mps;
+    std::vector<char> mask(n, 0);
+    for (size_t i = 0; i < n; ++i) mask[i] = std::abs(p.V[i]) >= vStick;
+    const std::vector<double> Fp = p.filtered(tr.measuredForce_N, &mask);
+    const double mm = std::isfinite(mass) ? mass : run.nominalMass_kg;
+    const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
+    const double c = 2.0 * zeta * std::sqrt(run.stiffness_N_per_m * mm);
+    const double ms = m.effects.sensorInertia ? m.effects.sensorInertia->mass_kg : 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        double e = 0;
+        const bool compared = mask[i];
+        if (compared) {
+            e = (Fp[i] - p.F[i]) * p.invRmsF;
+            ss += e * e;
+            count += 1;
+            if (frictionResidual) (*frictionResidual)[i] = p.F[i] - Fp[i];
+        }
+        r.push_back(e);
+        if (predicted) (*predicted)[i] = compared ? Fp[i] : kNaN;
+        if (used) (*used)[i] = compared;
+    }
+    for (size_t i = 0; i < n; ++i) {
+        const double fm = (mm + ms) * p.a[i] + c * p.xd[i] + run.stiffness_N_per_m * p.x[i];
+        const double e = (fm - p.F[i]) * p.invRmsF;
+        r.push_back(e);
+        ss += e * e;
+        count += 1;
+    }
+    return true;
+}
+
+size_t residualCount(const Context& cx, const std::vector<size_t>& idx) {
+    size_t n = 0;
+    for (size_t i : idx) n += cx.runs[i].size() * (cx.runs[i].run->setup == SetupKind::Dynamics ? 2 : 1);
+    return n;
+}
+
+// The residual vector of a model over the runs idx (false if a run fails); `used` (optional)
+// marks the entries a channel compares.
+bool residualVector(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
+                    const std::vector<size_t>& idx, std::vector<double>& r, std::vector<NoiseBlock>* blocks) {
+    double mass = kNaN;
+    const ExtendedModel m = buildModel(cx, spec, vals, mass);
+    r.clear();
+    if (blocks) blocks->clear();
+    for (size_t i : idx) {
+        const size_t off = r.size();
+        double ss = 0, n = 0;
+        std::vector<char> used;
+        if (!runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, &used, nullptr, spec.segments)) return false;
+        if (!blocks) continue;
+        // One block per channel: the run's n samples each (law/force, then rig or displacement).
+        const size_t nRun = cx.runs[i].size(), channels = (r.size() - off) / std::max<size_t>(nRun, 1);
+        for (size_t ch = 0; ch < channels; ++ch) {
+            NoiseBlock b;
+            b.offset = off + ch * nRun;
+            b.length = nRun;
+            // The equation-of-motion channel compares every sample; the others where `used`.
+            const bool eom = cx.runs[i].run->setup == SetupKind::Dynamics && !spec.segments && ch == 1;
+            b.used = eom || used.size() != nRun ? std::vector<char>(nRun, 1) : used;
+            const std::vector<double> blockR(r.begin() + static_cast<long>(b.offset),
+                                             r.begin() + static_cast<long>(b.offset + nRun));
+            fitAr1(blockR, b.used, b.phi, b.sigma);
+            blocks->push_back(std::move(b));
+        }
+    }
+    return true;
+}
+
+// Central-difference Jacobian of the residual vector in the solver's coordinates (log for
+// log-scaled parameters, the range for linear ones) at `vals`, for the free parameters whose
+// names are in `which`; a column whose step would leave the bounds uses a one-sided step.
+Eigen::MatrixXd residualJacobian(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
+                                 const std::vector<size_t>& idx, const std::vector<FitParameter>& params,
+                                 const std::vector<std::string>& which, size_t rows) {
+    Eigen::MatrixXd J(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(which.size()));
+    J.setZero();
+    constexpr double h = 1e-4;
+    parallelFor(which.size(), [&](size_t c) {
+        const auto it = std::find_if(params.begin(), params.end(), [&](const FitParameter& p) { return p.name == which[c]; });
+        if (it == params.end()) return;
+        const FitParameter& p = *it;
+        const double v = vals.count(p.name) ? vals.at(p.name) : p.value;
+        auto shifted = [&](double dz) {
+            return p.scale == ParamScale::Log ? v * std::exp(dz) : v + dz * (p.upper - p.lower);
+        };
+        double up = h, dn = -h;
+        if (shifted(up) > p.upper) up = 0.0;
+        if (shifted(dn) < p.lower) dn = 0.0;
+        if (up == dn) return;
+        std::map<std::string, double> a = vals, b = vals;
+        a[p.name] = shifted(up);
+        b[p.name] = shifted(dn);
+        std::vector<double> ra, rb;
+        if (!residualVector(cx, spec, a, idx, ra) || !residualVector(cx, spec, b, idx, rb) || ra.size() != rows ||
+            rb.size() != rows)
+            return;
+        for (size_t k = 0; k < rows; ++k) J(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(c)) = (ra[k] - rb[k]) / (up - dn);
+    });
+    return J;
+}
+
+// Sum of squared residuals of a model over the runs idx (inf if a run fails).
+double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx) {
+    double mass = kNaN;
+    const ExtendedModel m = buildModel(cx, spec, vals, mass);
+    std::vector<double> r;
+    double tot = 0;
+    for (size_t i : idx) {
+        double ss = 0, n = 0;
+        if (!runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments))
+            return std::numeric_limits<double>::infinity();
+        tot += ss;
+    }
+    return tot;
+}
+
+}  // namespace stickslip::identify::detail
