@@ -33,7 +33,7 @@ std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const 
     if (cx.anyDynamics && cx.opt->fitMass) {
         FitParameter p{"m", 0.53, 0.05, 5.0, true, ParamScale::Log};
         auto it = start.find("m");
-        if (it != start.end()) p.value = it->second;
+        if (it != start.end()) p.value = std::clamp(it->second, p.lower, p.upper);
         ps.push_back(p);
     }
     const bool dampingEffect = std::find(spec.effects.begin(), spec.effects.end(), "viscous_damping") != spec.effects.end();
@@ -53,6 +53,10 @@ std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const 
             FitParameter p{e + "." + q.name, q.initial, q.lower, q.upper, true, q.logScale ? ParamScale::Log : ParamScale::Linear};
             auto it = start.find(p.name);
             if (it != start.end()) p.value = it->second;
+            // A fitted value on a log-scaled bound comes back as exp(log(bound)), which may lie an
+            // ulp outside it; the engine would then refuse the warm start (D16: every
+            // leave-one-run-out refit of stick_healing failed on D_h = 0.01).
+            p.value = std::clamp(p.value, p.lower, p.upper);
             ps.push_back(p);
         }
     }

@@ -31,7 +31,12 @@ bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fi
                      const ModelErrors& with, const std::vector<std::map<std::string, double>>& loo,
                      const std::vector<size_t>& units, double tauInt) {
     const IdentifyOptions& opt = *cx.opt;
-    // (2) Held-out error, pooled and paired over runs.
+    // (2) Held-out error, pooled and paired over runs. No held-out error (every refit without a
+    // run failed) is no evidence: rejected, not waved through.
+    if (std::isfinite(ref.validationNrmse) && !std::isfinite(with.validationNrmse)) {
+        sc.reason = "no held-out error: the refits without each run failed";
+        return false;
+    }
     if (std::isfinite(ref.validationNrmse) && std::isfinite(with.validationNrmse) &&
         !(with.validationNrmse < ref.validationNrmse)) {
         sc.reason = "lowers the fit error (dBIC " + std::to_string(sc.deltaBic) + ") but not the held-out error (" +
