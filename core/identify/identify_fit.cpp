@@ -130,24 +130,15 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
         }
         rs.resize(points.size());
         std::vector<char> ok(nTasks, 0);
-        std::atomic<size_t> next{0};
-        auto work = [&]() {
-            for (size_t t = next.fetch_add(1); t < nTasks; t = next.fetch_add(1)) {
-                const size_t pt = t / nRuns, k = t % nRuns;
-                std::vector<double> r;
-                double ss = 0, n = 0;
-                if (!runResiduals(cx, cx.runs[idx[k]], models[pt], masses[pt], r, ss, n, nullptr, nullptr, nullptr,
-                                  spec.segments))
-                    continue;
-                std::copy(r.begin(), r.end(), rs[pt].begin() + static_cast<long>(offsets[k]));
-                ok[t] = 1;
-            }
-        };
-        const size_t workers = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()), nTasks);
-        std::vector<std::thread> pool;
-        for (size_t w = 1; w < workers; ++w) pool.emplace_back(work);
-        work();
-        for (std::thread& th : pool) th.join();
+        parallelFor(nTasks, [&](size_t t) {
+            const size_t pt = t / nRuns, k = t % nRuns;
+            std::vector<double> r;
+            double ss = 0, n = 0;
+            if (!runResiduals(cx, cx.runs[idx[k]], models[pt], masses[pt], r, ss, n, nullptr, nullptr, nullptr, spec.segments))
+                return;
+            std::copy(r.begin(), r.end(), rs[pt].begin() + static_cast<long>(offsets[k]));
+            ok[t] = 1;
+        });
         okOut.assign(points.size(), 1);
         for (size_t t = 0; t < nTasks; ++t)
             if (!ok[t]) okOut[t / nRuns] = 0;
