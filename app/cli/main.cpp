@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "man_page.hpp"
 #include "core/version.hpp"
 
 int main(int argc, char** argv) {
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
     addReproduceCommand(app, exitCode);
     addFitCommand(app, exitCode);
     addIdentifyCommand(app, exitCode);
+    addManPageCommand(app, exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,7 +1,11 @@
 // stickslip: the desktop explorer. Options: --preset NAME (default fig20), --raise VIEW
-// (bring a view's dock to the front, e.g. rig), --screenshot FILE.png (grab the window once
-// the first results are drawn, then quit).
+// (bring a view's dock to the front, e.g. rig), --analysis sweep|map (start the Analysis
+// menu's sweep or map with its dialog's values), --screenshot FILE.png (grab the window once
+// the first results, or the analysis, are drawn, then quit); an optional FILE argument opens
+// a session (.json) or overlays a measured run (CSV), as the desktop entry passes it.
 #include <QApplication>
+#include <QCursor>
+#include <QIcon>
 #include <QCommandLineParser>
 #include <QDockWidget>
 #include <QScreen>
@@ -11,16 +15,24 @@
 
 #include "core/presets.hpp"
 #include "core/version.hpp"
+#include "command_line.hpp"
 #include "main_window.hpp"
 #include "parameter_panel.hpp"
+#include "simulation_controller.hpp"
+#include "sweep_dialogs.hpp"
 #include "view_set.hpp"
 #include "widgets/rig_view.hpp"
 
 int main(int argc, char** argv) {
+    const QString sessionFile = stickslip::gui::takeSessionArgument(argc, argv);
     QApplication app(argc, argv);
     QApplication::setOrganizationName("StickSlipLab");
     QApplication::setApplicationName("stickslip");
     QApplication::setApplicationVersion(stickslip::kVersion);
+    QApplication::setDesktopFileName("stickslip");
+    QIcon icon;
+    for (int px : {16, 32, 48, 64, 128, 256}) icon.addFile(QString(":/icons/stickslip-%1.png").arg(px));
+    QApplication::setWindowIcon(icon);
 
     QCommandLineParser cli;
     cli.setApplicationDescription("StickSlip Lab: explorer for friction-induced stick-slip vibration");
@@ -30,11 +42,22 @@ int main(int argc, char** argv) {
     QCommandLineOption shotOpt("screenshot", "Grab the window after the first results, save PNG, quit.", "FILE");
     QCommandLineOption raiseOpt("raise", "Bring this view to the front (timeseries, rig, loop, phase, poincare, "
                                          "spectrum, autocorrelation, bifurcation, map).", "VIEW");
-    QCommandLineOption sessionOpt("session", "Open this session file.", "FILE");
     QCommandLineOption shotViewOpt("screenshot-view",
                                    "With --screenshot: grab only this view (floated at 960x560), e.g. rig.", "VIEW");
-    cli.addOptions({presetOpt, shotOpt, raiseOpt, sessionOpt, shotViewOpt});
+    QCommandLineOption analysisOpt("analysis",
+                                   "Start this analysis with its dialog's values: sweep (bifurcation) or map "
+                                   "(periodicity map); with --screenshot, grab when it is drawn.",
+                                   "KIND");
+    // Listed for --help only: takeSessionArgument has already taken it out of argv.
+    QCommandLineOption sessionOpt("session", "Open this session file.", "FILE");
+    cli.addOptions({presetOpt, shotOpt, raiseOpt, sessionOpt, shotViewOpt, analysisOpt});
+    cli.addPositionalArgument("file", "Session (.json) to open or measured run (CSV) to overlay.", "[FILE]");
     cli.process(app);
+    const QString analysis = cli.value(analysisOpt);
+    if (cli.isSet(analysisOpt) && analysis != "sweep" && analysis != "map") {
+        std::fprintf(stderr, "stickslip: --analysis '%s' is not one of: sweep, map\n", qPrintable(analysis));
+        return 2;
+    }
 
     const bool screenshot = cli.isSet(shotOpt);
     stickslip::gui::MainWindow w(/*restoreSettings=*/!screenshot);
@@ -43,9 +66,16 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "stickslip: unknown preset '%s'\n", qPrintable(preset));
         return 2;
     }
-    if (cli.isSet(sessionOpt)) {
+    if (!sessionFile.isEmpty()) {
         QString why;
-        if (!w.loadSessionFrom(cli.value(sessionOpt), &why)) {
+        if (!w.loadSessionFrom(sessionFile, &why)) {
+            std::fprintf(stderr, "stickslip: %s\n", qPrintable(why));
+            return 3;
+        }
+    }
+    for (const QString& file : cli.positionalArguments()) {
+        QString why;
+        if (!w.openFile(file, &why)) {
             std::fprintf(stderr, "stickslip: %s\n", qPrintable(why));
             return 3;
         }
@@ -68,8 +98,10 @@ int main(int argc, char** argv) {
         const QString file = cli.value(shotOpt);
         // After the first outcome with the final parameters: let the plots (and the rig
         // animation) draw for a moment, then grab the window itself.
+        // Park the pointer in the screen's corner, so no plot shows its cursor read-out.
+        if (const QScreen* screen = QGuiApplication::primaryScreen()) QCursor::setPos(screen->geometry().bottomRight());
         auto armed = std::make_shared<bool>(true);
-        QObject::connect(&w, &stickslip::gui::MainWindow::runShown, &w, [&w, target, file, armed](const auto&) {
+        auto grabLater = [&w, target, file, armed] {
             if (!*armed) return;
             *armed = false;
             // Animate the rig so the picture shows it (and the time-series cursor) mid-run.
@@ -82,7 +114,16 @@ int main(int argc, char** argv) {
                              shot.width(), shot.height());
                 QApplication::exit(ok ? 0 : 1);
             });
-        });
+        };
+        auto* ctl = w.controller();
+        if (analysis == "sweep")
+            QObject::connect(ctl, &stickslip::gui::SimulationController::sweepFinished, &w, grabLater);
+        else if (analysis == "map")
+            QObject::connect(ctl, &stickslip::gui::SimulationController::mapFinished, &w, grabLater);
+        else
+            QObject::connect(&w, &stickslip::gui::MainWindow::runShown, &w, grabLater);
     }
+    if (analysis == "sweep") w.sweepDialog()->start();
+    if (analysis == "map") w.mapDialog()->start();
     return app.exec();
 }

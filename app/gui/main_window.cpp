@@ -282,9 +282,9 @@ bool MainWindow::openMeasured(const QString& path, QString* error) {
     return true;
 }
 
-void MainWindow::openFile(const QString& path) {
-    if (QFileInfo(path).suffix().compare("json", Qt::CaseInsensitive) == 0) loadSessionFrom(path);
-    else openMeasured(path);
+bool MainWindow::openFile(const QString& path, QString* error) {
+    if (QFileInfo(path).suffix().compare("json", Qt::CaseInsensitive) == 0) return loadSessionFrom(path, error);
+    return openMeasured(path, error);
 }
 
 void MainWindow::raiseView(const QString& viewId) {

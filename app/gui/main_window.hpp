@@ -47,6 +47,8 @@ public:
     bool saveSessionTo(const QString& path, QString* error = nullptr);
     bool loadSessionFrom(const QString& path, QString* error = nullptr);
     bool openMeasured(const QString& path, QString* error = nullptr);
+    // By extension: a .json session, else a measured CSV (menus, drops, the app's file argument).
+    bool openFile(const QString& path, QString* error = nullptr);
     void raiseView(const QString& viewId);
 
 signals:
@@ -64,7 +66,6 @@ private:
     void onRun(const RunOutcome& o);
     void addRecent(const QString& path);
     void rebuildRecentMenu();
-    void openFile(const QString& path);   // by extension: .json session, else CSV
     void exportView(const QString& viewId);
     void exportRunCsv();
     void showMessage(const QString& text, bool failure);

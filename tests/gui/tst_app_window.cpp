@@ -15,6 +15,7 @@
 #include <qwt_plot_curve.h>
 #include <cmath>
 
+#include "command_line.hpp"
 #include "core/integrate/simulate.hpp"
 #include "main_window.hpp"
 #include "parameter_panel.hpp"
@@ -64,6 +65,33 @@ class TstAppWindow : public QObject {
     Q_OBJECT
     MainWindow* w = nullptr;
 private slots:
+    void sessionArgumentIsTakenBeforeQtSeesIt() {
+        // QGuiApplication swallows "--session ID" (X11 session management): the app's
+        // --session FILE was silently ignored until it was taken out of argv first.
+        QByteArray a0("stickslip"), a1("--preset"), a2("fig22"), a3("--session"), a4("/tmp/s.json"), a5("--raise"),
+            a6("rig");
+        char* argv[] = {a0.data(), a1.data(), a2.data(), a3.data(), a4.data(), a5.data(), a6.data(), nullptr};
+        int argc = 7;
+        QCOMPARE(takeSessionArgument(argc, argv), QStringLiteral("/tmp/s.json"));
+        QCOMPARE(argc, 5);
+        QCOMPARE(QByteArray(argv[2]), QByteArray("fig22"));
+        QCOMPARE(QByteArray(argv[3]), QByteArray("--raise"));
+        QCOMPARE(argv[5], nullptr);
+        QByteArray b1("--session=/tmp/t.json"), b2("-session"), b3("/tmp/u.json");
+        char* argv2[] = {a0.data(), b1.data(), nullptr};
+        argc = 2;
+        QCOMPARE(takeSessionArgument(argc, argv2), QStringLiteral("/tmp/t.json"));
+        QCOMPARE(argc, 1);
+        char* argv3[] = {a0.data(), b2.data(), b3.data(), a5.data(), a6.data(), nullptr};
+        argc = 5;
+        QCOMPARE(takeSessionArgument(argc, argv3), QStringLiteral("/tmp/u.json"));
+        QCOMPARE(argc, 3);
+        char* argv4[] = {a0.data(), a1.data(), a2.data(), nullptr};
+        argc = 3;
+        QCOMPARE(takeSessionArgument(argc, argv4), QString());
+        QCOMPARE(argc, 3);
+    }
+
     void initTestCase() {
         w = new MainWindow(/*restoreSettings=*/false);
         w->show();
