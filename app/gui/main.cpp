@@ -89,6 +89,7 @@ int main(int argc, char** argv) {
             return 2;
         }
         d->setFloating(true);
+        d->move(0, 0);  // away from the parked pointer (bottom-right), so no cursor read-out shows
         d->resize(960, 560);
         target = d;
     }
