@@ -1,4 +1,6 @@
 // sweep(), map(), analyze(): the options and outputs of `stickslip-cli sweep`, `map`, `analyze`.
+#include <pybind11/stl.h>
+
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "core/analysis/analyze_run.hpp"
