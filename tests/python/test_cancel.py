@@ -14,25 +14,45 @@ import stickslip
 LONG = dict(cycles=200000, output_every=0.05)  # minutes if it were not cancelled
 
 
-def test_interrupt_main_cancels_simulate():
-    timer = threading.Timer(0.5, _thread.interrupt_main)
+def interrupt_later(delay=0.5):
+    """Raises KeyboardInterrupt in the main thread after `delay` s; returns a list that gets the time it did."""
+    when = []
+
+    def fire():
+        when.append(time.monotonic())
+        _thread.interrupt_main()
+
+    timer = threading.Timer(delay, fire)
     timer.start()
-    t0 = time.monotonic()
+    return timer, when
+
+
+def test_interrupt_main_cancels_simulate():
+    timer, when = interrupt_later()
     with pytest.raises(KeyboardInterrupt):
         stickslip.simulate("fig20", **LONG)
-    elapsed = time.monotonic() - t0
+    done = time.monotonic()
     timer.join()
-    assert elapsed < 2.0, elapsed
+    assert done - when[0] < 2.0, done - when[0]
 
 
 def test_interrupt_main_cancels_sweep():
-    timer = threading.Timer(0.5, _thread.interrupt_main)
-    timer.start()
-    t0 = time.monotonic()
+    timer, when = interrupt_later()
     with pytest.raises(KeyboardInterrupt):
         stickslip.sweep("fig20", start=1e-4, stop=5e-3, steps=400, settle=500, samples=500)
+    done = time.monotonic()
     timer.join()
-    assert time.monotonic() - t0 < 2.5
+    assert done - when[0] < 2.0, done - when[0]
+
+
+def test_interrupt_main_cancels_identify(damper):
+    data = [str(p) for p in sorted(damper.glob("*.csv"))]
+    timer, when = interrupt_later(1.0)
+    with pytest.raises(KeyboardInterrupt):
+        stickslip.identify(data, setup="prescribed")  # about half a minute if not cancelled
+    done = time.monotonic()
+    timer.join()
+    assert done - when[0] < 2.0, done - when[0]
 
 
 def test_sigint_cancels_a_run_in_a_subprocess():
