@@ -31,6 +31,8 @@ std::vector<std::string> stringList(py::handle value, const std::string& name) {
     std::vector<std::string> out;
     if (value.is_none()) return out;
     if (py::isinstance<py::str>(value)) return {value.cast<std::string>()};
+    if (py::hasattr(value, "__fspath__"))  // one os.PathLike (pathlib.Path)
+        return {py::module_::import("os").attr("fspath")(value).cast<std::string>()};
     if (!py::isinstance<py::iterable>(value)) raise(PyExc_TypeError, name + ": expected a str or a list of str");
     for (py::handle item : value) {
         // os.PathLike (pathlib.Path) as well as str
