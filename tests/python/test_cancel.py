@@ -94,4 +94,5 @@ def test_gil_is_released_during_a_run():
     th.join()
     during = [t for t in ticks if t0 < t < t1]
     assert t1 - t0 > 0.2, "run too short to tell"
-    assert len(during) >= 0.5 * (t1 - t0) / 0.01 * 0.5, (len(during), t1 - t0)
+    # With the GIL held for the whole run the counter could not tick at all (0 or 1 ticks).
+    assert len(during) >= 5, (len(during), t1 - t0)
