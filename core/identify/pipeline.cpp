@@ -1,6 +1,7 @@
 #include "pipeline.hpp"
 
 #include <cstdlib>
+#include <sstream>
 
 #include "../io/units.hpp"
 #include "fit_report.hpp"
@@ -185,8 +186,10 @@ bool runFitRequest(const FitRequest& o, FitOutcome& out, PipelineStatus& status)
                         std::string(toString(law)) + ": " + f.message);
         }
         if (o.log) {
-            o.log(std::string("  ") + toString(law) + ": fit NRMSE " + std::to_string(f.fitNrmse) +
-                  ", validation NRMSE " + std::to_string(f.validationNrmse) + ", " + f.fit.identifiabilityMessage);
+            std::ostringstream line;  // default stream formatting, as the CLI always printed it
+            line << "  " << toString(law) << ": fit NRMSE " << f.fitNrmse << ", validation NRMSE " << f.validationNrmse
+                 << ", " << f.fit.identifiabilityMessage;
+            o.log(line.str());
             if (!f.stderrWarning.empty()) o.log("  warning: " + f.stderrWarning);
         }
         out.fits.push_back(std::move(f));
