@@ -50,15 +50,6 @@ def read_csv_text(text):
     return rows[0], rows[1:]
 
 
-def fmt(v):
-    """A value as the CLI prints it (%.10g; integers in decimal)."""
-    if isinstance(v, str):
-        return v
-    if float(v).is_integer() and abs(v) < 1e15 and not isinstance(v, float):
-        return str(int(v))
-    return "%.10g" % v
-
-
 def assert_columns_equal(header, rows, columns, int_columns=()):
     """The module's columns equal the CLI's CSV columns, to print precision."""
     assert list(columns.keys()) == header
