@@ -14,7 +14,7 @@ echo "== sanitize: build in build-asan/ (RelWithDebInfo, ASan + UBSan; core, CLI
 asan="$root/build-asan"
 if [ ! -f "$asan/CMakeCache.txt" ]; then
   cmake -S "$root" -B "$asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-        -DSTICKSLIP_SANITIZE=ON -DSTICKSLIP_BUILD_BENCH=OFF -DSTICKSLIP_BUILD_GUI=OFF
+        -DSTICKSLIP_SANITIZE=ON -DSTICKSLIP_BUILD_BENCH=OFF -DSTICKSLIP_BUILD_GUI=OFF -DSTICKSLIP_BUILD_PYTHON=OFF
 fi
 cmake --build "$asan" -j"$(nproc)"
 

@@ -16,6 +16,17 @@ const std::vector<std::string>& runCsvColumns() {
     return cols;
 }
 
+std::vector<std::vector<double>> runCsvValues(const RunResult& r) {
+    std::vector<std::vector<double>> cols(runCsvColumns().size());
+    for (auto& c : cols) c.reserve(r.samples.size());
+    for (const Sample& x : r.samples) {
+        const double row[] = {x.t_s,     x.stage_m, x.slider_m, x.sliderVel_mps,      x.relVel_mps,
+                              x.force_N, x.ratio,   x.alpha,    x.stuck ? 1.0 : 0.0};
+        for (size_t j = 0; j < cols.size(); ++j) cols[j].push_back(row[j]);
+    }
+    return cols;
+}
+
 std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector<std::string>& extraComments) {
     std::string s;
     char buf[512];

@@ -14,6 +14,10 @@ namespace stickslip::io {
 // Column names of a run file, in order.
 const std::vector<std::string>& runCsvColumns();
 
+// The values of the run file's columns (runCsvColumns order), one vector per column, as
+// doubles (stuck is 0 or 1): the numbers runCsvText prints (it rounds them to %.10g).
+std::vector<std::vector<double>> runCsvValues(const RunResult& r);
+
 // The full text of a run file: '#' lines with the program version, model, set-up, status
 // and every parameter ("# A = 0.001 m"), any `extraComments` (one '#' line each), then
 // the header time_s,stage_disp_m,slider_disp_m,slider_vel_mps,rel_vel_mps,

@@ -101,6 +101,33 @@ private slots:
                     1e-9 * std::max(1.0, std::abs(r.samples[i].force_N)));
     }
 
+    void runCsvValuesAreTheColumnsOfTheText() {
+        Preset pr;
+        QVERIFY(findPreset("fig20", pr));
+        pr.params.cycles = 1;
+        const RunResult r = simulate(pr.params);
+        QVERIFY2(r.ok(), r.message.c_str());
+        const auto values = runCsvValues(r);
+        QCOMPARE(values.size(), runCsvColumns().size());
+        QTemporaryDir dir;
+        const std::string path = dir.filePath("run.csv").toStdString();
+        std::string err;
+        QVERIFY2(writeRunCsv(path, pr.params, r, &err), err.c_str());
+        CsvTable t;
+        CsvError e;
+        QVERIFY2(readCsvTable(path, t, e), e.what().c_str());
+        for (size_t j = 0; j < values.size(); ++j) {
+            const int c = t.column(runCsvColumns()[j]);
+            QVERIFY(c >= 0);
+            QCOMPARE(values[j].size(), r.samples.size());
+            for (size_t i = 0; i < r.samples.size(); ++i) {
+                const double a = values[j][i], b = t.columns[static_cast<size_t>(c)][i];
+                QVERIFY2(std::abs(a - b) <= 1e-9 * std::max(1e-12, std::abs(a)), runCsvColumns()[j].c_str());
+            }
+        }
+        QCOMPARE(values[8][0], r.samples[0].stuck ? 1.0 : 0.0);
+    }
+
     void slipHistoryFromEachColumnKind() {
         CsvTable t;
         CsvError e;

@@ -1,0 +1,253 @@
+#include "pipeline.hpp"
+
+#include <cstdlib>
+#include <sstream>
+
+#include "../io/units.hpp"
+#include "fit_report.hpp"
+
+namespace stickslip::identify {
+
+using io::Signal;
+
+namespace {
+
+bool fail(PipelineStatus& st, PipelineCode code, const std::string& msg) {
+    st.code = code;
+    st.message = msg;
+    return false;
+}
+
+// Cleans every run of `ds`; each must know its t_N.
+bool cleanRuns(const io::Dataset& ds, const PreprocessSettings& pre, std::vector<CleanRun>& out,
+               PipelineStatus& st) {
+    for (const io::Run& r : ds.runs) {
+        CleanRun c;
+        std::string e;
+        if (!preprocessRun(r, pre, c, &e)) return fail(st, PipelineCode::BadArguments, e);
+        double tN = 0;
+        if (!c.run.setting("tN", tN))
+            return fail(st, PipelineCode::BadArguments,
+                        r.file + ": t_N unknown: give a normal_force_N or band_tension_N column, a manifest, or --run-set " +
+                            r.name() + ":tN=VALUE");
+        out.push_back(std::move(c));
+    }
+    return true;
+}
+
+nlohmann::json runSummary(const CleanRun& c, const io::Run& r) {
+    nlohmann::json settings = nlohmann::json::object();
+    for (const auto& [k, v] : c.run.settings) {
+        const auto src = c.run.settingSource.find(k);
+        settings[k] = {{"value", v}, {"source", src == c.run.settingSource.end() ? std::string() : src->second}};
+    }
+    return {{"file", r.file}, {"sample_rate_Hz", 1.0 / c.dt_s},
+            {"fit_window_s", {c.run[Signal::Time][c.begin], c.run[Signal::Time][c.end - 1]}},
+            {"period_s", c.period_s}, {"resampled", c.resampled}, {"notes", c.notes}, {"settings", settings}};
+}
+
+// The solver settings of a fit request (everything but setup and law).
+bool fitSettings(const FitRequest& o, SetupKind setup, DatasetFitSettings& st, PipelineStatus& status) {
+    st.setup = setup;
+    st.free = splitList(o.free);
+    st.predict = o.predict;
+    if (o.noFilterPrediction) st.predict.filterPrediction = false;
+    st.predict.fitInitialState = o.initialState == "fitted";
+    st.multistarts = o.multistarts;
+    st.agreeingStarts = o.agreeingStarts;
+    st.relativeStep = o.relativeStep;
+    st.jackknife = o.jackknife;
+    st.curveCoordinates = o.coordinates == "curve";
+    st.maxIterations = o.maxIterations;
+    st.seed = o.seed;
+    st.lossScale = o.robustScale;
+    st.cancel = o.cancel;
+    if (o.robust == "huber") st.loss = LossKind::Huber;
+    else if (o.robust == "cauchy") st.loss = LossKind::Cauchy;
+    else if (o.robust != "none")
+        return fail(status, PipelineCode::BadArguments, "--robust " + o.robust + ": must be none, huber or cauchy");
+    for (const std::string& kv : o.sets) {
+        const auto eq = kv.find('=');
+        double v = 0;
+        std::string e;
+        if (eq == std::string::npos) return fail(status, PipelineCode::BadArguments, "--set " + kv + ": expected KEY=VALUE");
+        const std::string key = kv.substr(0, eq);
+        if (key == "zeta") {
+            char* end = nullptr;
+            const std::string txt = kv.substr(eq + 1);
+            v = std::strtod(txt.c_str(), &end);
+            if (end == txt.c_str() || *end != '\0' || !(v >= 0.0))
+                return fail(status, PipelineCode::BadArguments, "--set " + kv + ": zeta must be a number >= 0");
+        } else if (!io::parseParamValue(key, kv.substr(eq + 1), v, &e)) {
+            return fail(status, PipelineCode::BadArguments, "--set " + kv + ": " + e);
+        }
+        st.start[key] = v;
+    }
+    for (const std::string& n : st.free) {
+        FitParameter fp;
+        if (n != "zeta" && !defaultParameter(n, setup, fp))
+            return fail(status, PipelineCode::BadArguments,
+                        "--free " + n + ": unknown parameter (known: mu C1 eta Dc vc epsT r m zeta)");
+    }
+    return true;
+}
+
+}  // namespace
+
+std::vector<std::string> splitList(const std::string& s) {
+    std::vector<std::string> out;
+    std::string cur;
+    for (char c : s + ",") {
+        if (c == ',') {
+            if (!cur.empty()) out.push_back(cur);
+            cur.clear();
+        } else if (c != ' ') {
+            cur += c;
+        }
+    }
+    return out;
+}
+
+PreprocessSettings CleaningOptions::effective() const {
+    PreprocessSettings p = pre;
+    if (noBandStop) p.filters.bandStop = false;
+    if (noLowPass) p.filters.lowPass = false;
+    if (noSteadyTrim) p.trim.steadyAmplitude = false;
+    return p;
+}
+
+bool loadMeasuredInputs(const MeasuredInputs& o, io::Dataset& fitData, io::Dataset& valData, SetupKind& setup,
+                        PipelineStatus& st) {
+    if (o.data.empty()) return fail(st, PipelineCode::BadArguments, "no data files given");
+    io::DatasetOptions dopt;
+    dopt.manifestPath = o.manifest;
+    dopt.runSets = o.runSets;
+    std::string why;
+    for (const auto& c : o.columns)
+        if (!dopt.mapping.addColumns(c, &why)) return fail(st, PipelineCode::BadArguments, why);
+    for (const auto& u : o.units)
+        if (!dopt.mapping.addUnits(u, &why)) return fail(st, PipelineCode::BadArguments, why);
+    io::DatasetError derr;
+    if (!io::loadDataset(o.data, dopt, fitData, derr))
+        return fail(st, derr.file == "--run-set" ? PipelineCode::BadArguments : PipelineCode::BadInput, derr.what());
+    if (!o.validateOn.empty()) {
+        io::DatasetOptions vopt = dopt;
+        vopt.runSets.clear();
+        if (!io::loadDataset(o.validateOn, vopt, valData, derr)) return fail(st, PipelineCode::BadInput, derr.what());
+        for (const std::string& spec : o.runSets) {  // run-sets may name validation files too
+            std::string w;
+            io::applyRunSet(valData, spec, &w);
+        }
+    }
+    setup = SetupKind::Prescribed;
+    if (!o.setup.empty()) {
+        if (!parseSetupKind(o.setup, setup))
+            return fail(st, PipelineCode::BadArguments, "--setup " + o.setup + ": must be prescribed or dynamics");
+    } else if (fitData.runs.front().has(Signal::SliderDisp)) {
+        setup = SetupKind::Dynamics;
+    }
+    return true;
+}
+
+bool runFitRequest(const FitRequest& o, FitOutcome& out, PipelineStatus& status) {
+    io::Dataset fitData, valData;
+    if (!loadMeasuredInputs(o.in, fitData, valData, out.setup, status)) return false;
+    const PreprocessSettings pre = o.cleaning.effective();
+    nlohmann::json preJson = toJson(pre);
+    if (!cleanRuns(fitData, pre, out.fitRuns, status) || !cleanRuns(valData, pre, out.validationRuns, status))
+        return false;
+    nlohmann::json perRun = nlohmann::json::array();
+    for (size_t i = 0; i < out.fitRuns.size(); ++i) perRun.push_back(runSummary(out.fitRuns[i], fitData.runs[i]));
+    for (size_t i = 0; i < out.validationRuns.size(); ++i)
+        perRun.push_back(runSummary(out.validationRuns[i], valData.runs[i]));
+    if (o.splitTime > 0.0) {
+        const std::string e = holdOutLaterParts(out.fitRuns, out.validationRuns, o.splitTime);
+        if (!e.empty()) return fail(status, PipelineCode::BadArguments, "--split-time: " + e);
+    }
+    preJson["runs"] = perRun;
+    DatasetFitSettings& st = out.settings;
+    if (!fitSettings(o, out.setup, st, status)) return false;
+    std::vector<LawKind> laws;
+    if (o.model == "rate-state") laws = {LawKind::RateState};
+    else if (o.model == "coulomb") laws = {LawKind::Coulomb};
+    else if (o.model == "both") laws = {LawKind::RateState, LawKind::Coulomb};
+    else return fail(status, PipelineCode::BadArguments, "--model " + o.model + ": must be rate-state, coulomb or both");
+
+    for (LawKind law : laws) {
+        st.law = law;
+        if (o.log)
+            o.log(std::string("fitting ") + toString(law) + " (" + toString(out.setup) + ", " +
+                  std::to_string(out.fitRuns.size()) + " fit runs, " + std::to_string(out.validationRuns.size()) +
+                  " validation runs)...");
+        DatasetFit f = fitDataset(out.fitRuns, out.validationRuns, st);
+        if (!f.ok) {
+            const bool cancelled = o.cancel && o.cancel->load();
+            return fail(status, cancelled ? PipelineCode::Cancelled : PipelineCode::RunFailed,
+                        std::string(toString(law)) + ": " + f.message);
+        }
+        if (o.log) {
+            std::ostringstream line;  // default stream formatting, as the CLI always printed it
+            line << "  " << toString(law) << ": fit NRMSE " << f.fitNrmse << ", validation NRMSE " << f.validationNrmse
+                 << ", " << f.fit.identifiabilityMessage;
+            o.log(line.str());
+            if (!f.stderrWarning.empty()) o.log("  warning: " + f.stderrWarning);
+        }
+        out.fits.push_back(std::move(f));
+    }
+    std::vector<const DatasetFit*> fitted;
+    for (const DatasetFit& f : out.fits) fitted.push_back(&f);
+    nlohmann::json& rep = out.report;
+    rep = fitReportJson(fitted);
+    rep["preprocessing"] = preJson;
+    rep["prediction"] = toJson(st.predict);
+    rep["t_N_convention"] = out.setup == SetupKind::Prescribed
+        ? "t_N of each run is its known load (normal force column, else the band tension column, else manifest/--run-set); "
+          "mu, C1 and eta are per unit of that load, so for a band brake mu absorbs the band's force amplification"
+        : "t_N of each run from the normal force column (mean), else the manifest";
+    rep["validation"] = !o.in.validateOn.empty() ? "by run (--validate-on)" : (o.splitTime > 0 ? "by time (--split-time)" : "none");
+    return true;
+}
+
+bool runIdentifyRequest(const IdentifyRequest& o, IdentifyResult& res, nlohmann::json& report, PipelineStatus& status) {
+    IdentifyOptions opt = o.options;
+    if (o.dynamicsResidual == "auto") opt.dynamicsResidual = DynamicsResidual::Auto;
+    else if (o.dynamicsResidual == "equation-error") opt.dynamicsResidual = DynamicsResidual::EquationError;
+    else if (o.dynamicsResidual == "segments") opt.dynamicsResidual = DynamicsResidual::Segments;
+    else
+        return fail(status, PipelineCode::BadArguments,
+                    "--dynamics-residual: '" + o.dynamicsResidual + "' is not one of auto, equation-error, segments");
+    io::Dataset fitData, valData;
+    SetupKind setup = SetupKind::Prescribed;
+    if (!loadMeasuredInputs(o.in, fitData, valData, setup, status)) return false;
+    const PreprocessSettings pre = o.cleaning.effective();
+    std::vector<CleanRun> fitClean, valClean;
+    if (!cleanRuns(fitData, pre, fitClean, status) || !cleanRuns(valData, pre, valClean, status)) return false;
+    std::vector<IdentifyRun> runs;
+    for (int pass = 0; pass < 2; ++pass)
+        for (const CleanRun& c : pass == 0 ? fitClean : valClean) {
+            IdentifyRun ir;
+            std::string e;
+            if (!makeIdentifyRun(c, setup, ir, &e)) return fail(status, PipelineCode::BadInput, e);
+            ir.validation = pass == 1;
+            runs.push_back(std::move(ir));
+        }
+    opt.freeLaw = splitList(o.free);
+    for (const std::string& n : opt.freeLaw) {
+        FitParameter fp;
+        if (!defaultParameter(n, setup, fp) || n == "m" || n == "k" || n == "c" || n == "tN")
+            return fail(status, PipelineCode::BadArguments, "--free " + n + ": not a law parameter (mu, C1, eta, Dc, vc, epsT, r)");
+    }
+    opt.candidates = o.candidates;
+    for (const std::string& c : opt.candidates) {
+        EffectInfo info;
+        if (!findEffect(c, info)) return fail(status, PipelineCode::BadArguments, "--candidates " + c + ": not in the catalogue");
+    }
+    res = identifyEffects(std::move(runs), opt);
+    if (!res.ok) return fail(status, res.cancelled ? PipelineCode::Cancelled : PipelineCode::RunFailed, res.message);
+    report = toJson(res);
+    report["preprocessing"] = toJson(pre);
+    report["inputs"] = {{"data", o.in.data}, {"validate_on", o.in.validateOn}, {"manifest", o.in.manifest}};
+    return true;
+}
+
+}  // namespace stickslip::identify

@@ -1,0 +1,87 @@
+// identify/pipeline.hpp: loading measured inputs and the fit/identify requests of every front end.
+#include <QtTest>
+
+#include "core/identify/pipeline.hpp"
+
+using namespace stickslip;
+using namespace stickslip::identify;
+
+namespace {
+const std::string kShared = STICKSLIP_SHARED_DIR;
+const std::string kDamper = kShared + "/data/real/friction-damper/";
+}  // namespace
+
+class TstPipeline : public QObject {
+    Q_OBJECT
+private slots:
+    void splitListDropsBlanks() {
+        QCOMPARE(splitList("mu, eta,,Dc"), (std::vector<std::string>{"mu", "eta", "Dc"}));
+        QVERIFY(splitList("").empty());
+    }
+
+    void loadSetupFromColumns() {
+        MeasuredInputs in;
+        in.data = {kShared + "/data/synthetic/D01/run_01.csv"};
+        in.manifest = kShared + "/data/synthetic/D01/manifest.json";
+        io::Dataset fit, val;
+        SetupKind setup = SetupKind::Prescribed;
+        PipelineStatus st;
+        QVERIFY2(loadMeasuredInputs(in, fit, val, setup, st), st.message.c_str());
+        QVERIFY(setup == SetupKind::Dynamics);  // the run has a slider displacement
+        QCOMPARE(fit.runs.size(), size_t(1));
+        QVERIFY(val.runs.empty());
+        in.setup = "sideways";
+        QVERIFY(!loadMeasuredInputs(in, fit, val, setup, st));
+        QVERIFY(st.code == PipelineCode::BadArguments);
+        in.setup.clear();
+        in.data = {kShared + "/no/such/file.csv"};
+        QVERIFY(!loadMeasuredInputs(in, fit, val, setup, st));
+        QVERIFY(st.code == PipelineCode::BadInput);
+        in.data.clear();
+        QVERIFY(!loadMeasuredInputs(in, fit, val, setup, st));
+        QVERIFY(st.code == PipelineCode::BadArguments);
+    }
+
+    void fitRequestOnOneDamperRun() {
+        FitRequest req;
+        req.in.data = {kDamper + "1Hz_30lb_1in.csv"};
+        req.model = "coulomb";
+        req.free = "mu,epsT";
+        req.multistarts = 1;
+        req.maxIterations = 10;
+        std::vector<std::string> lines;
+        req.log = [&](const std::string& l) { lines.push_back(l); };
+        FitOutcome out;
+        PipelineStatus st;
+        QVERIFY2(runFitRequest(req, out, st), st.message.c_str());
+        QVERIFY(out.setup == SetupKind::Prescribed);
+        QCOMPARE(out.fits.size(), size_t(1));
+        QVERIFY(!lines.empty());
+        QVERIFY(out.report.contains("preprocessing") && out.report.contains("prediction"));
+        QCOMPARE(out.report["validation"].get<std::string>(), std::string("none"));
+        QCOMPARE(out.report["preprocessing"]["runs"].size(), size_t(1));
+        req.model = "stribeck";
+        QVERIFY(!runFitRequest(req, out, st));
+        QVERIFY(st.code == PipelineCode::BadArguments);
+        QVERIFY(st.message.find("--model stribeck") != std::string::npos);
+    }
+
+    void identifyRequestRejectsBadOptions() {
+        IdentifyRequest req;
+        req.in.data = {kDamper + "1Hz_30lb_1in.csv"};
+        req.dynamicsResidual = "magic";
+        IdentifyResult res;
+        nlohmann::json j;
+        PipelineStatus st;
+        QVERIFY(!runIdentifyRequest(req, res, j, st));
+        QVERIFY(st.code == PipelineCode::BadArguments);
+        req.dynamicsResidual = "equation-error";
+        req.candidates = {"no_such_effect"};
+        QVERIFY(!runIdentifyRequest(req, res, j, st));
+        QVERIFY(st.code == PipelineCode::BadArguments);
+        QVERIFY(st.message.find("no_such_effect") != std::string::npos);
+    }
+};
+
+QTEST_GUILESS_MAIN(TstPipeline)
+#include "tst_pipeline.moc"

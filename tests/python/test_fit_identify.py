@@ -1,0 +1,40 @@
+"""fit() and identify(): the same report as `stickslip-cli fit/identify --report`, as a dict."""
+import pytest
+
+import stickslip
+from conftest import load_json, run_cli, strip_keys
+
+
+def test_fit_equals_cli_report(cli, damper, tmp_path):
+    data = [str(damper / "1Hz_30lb_1in.csv")]
+    val = [str(damper / "1Hz_36lb_1in.csv")]
+    got = stickslip.fit(data, validate_on=val, model="both", free="mu,epsT", multistarts=1, max_iterations=15)
+    run_cli(cli, "fit", "--data", *data, "--validate-on", *val, "--model", "both", "--free", "mu,epsT",
+            "--multistarts", "1", "--max-iterations", "15", "--report", tmp_path / "fit.json")
+    want = load_json(tmp_path / "fit.json")
+    assert strip_keys(got) == strip_keys(want)
+    assert got["validation"] == "by run (--validate-on)"
+
+
+def test_identify_equals_cli_report(cli, damper, tmp_path):
+    data = [str(damper / n) for n in ("1Hz_30lb_1in.csv", "1Hz_36lb_1in.csv", "0.5Hz_30lb_1in.csv")]
+    opts = dict(setup="prescribed", candidates=["normal_load_mu"], max_effects=1, null_replicas=20, multistarts=1)
+    got = stickslip.identify(data, **opts)
+    run_cli(cli, "identify", "--data", *data, "--setup", "prescribed", "--candidates", "normal_load_mu",
+            "--max-effects", "1", "--null-replicas", "20", "--multistarts", "1", "--quiet",
+            "--report", tmp_path / "id.json")
+    want = load_json(tmp_path / "id.json")
+    assert got["ok"] is True
+    assert strip_keys(got) == strip_keys(want)
+
+
+def test_fit_identify_bad_arguments(damper):
+    run = str(damper / "1Hz_30lb_1in.csv")
+    with pytest.raises(ValueError, match="--model stribeck"):
+        stickslip.fit(run, model="stribeck")
+    with pytest.raises(ValueError, match="unknown keyword argument 'colour'"):
+        stickslip.fit(run, colour="red")
+    with pytest.raises(ValueError, match="not in the catalogue"):
+        stickslip.identify(run, candidates="no_such_effect")
+    with pytest.raises(OSError):
+        stickslip.fit("/no/such/run.csv")
