@@ -8,6 +8,7 @@ STICKSLIP_DEB_PACKAGES=(
   libeigen3-dev libceres-dev libfftw3-dev
   libcli11-dev nlohmann-json3-dev libcsv-dev
   libgtest-dev libbenchmark-dev
+  libopenmpi-dev openmpi-bin
   xvfb xauth
 )
 

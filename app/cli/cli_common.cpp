@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "core/io/units.hpp"
+#include "mpi_runner.hpp"
 #include "core/presets.hpp"
 
 namespace stickslip::cli {
@@ -96,7 +97,8 @@ int buildSimParams(const SimOptions& o, SimParams& out, std::string* error) {
 }
 
 void reportError(const std::string& command, const std::string& message, int code, int& exitCode) {
-    std::cerr << "stickslip-cli " << command << ": " << message << '\n';
+    // Under mpirun every rank parses the same arguments and meets the same error: rank 0 speaks.
+    if (mpiRank() == 0) std::cerr << "stickslip-cli " << command << ": " << message << '\n';
     exitCode = code;
 }
 

@@ -1,11 +1,16 @@
-// `stickslip-cli map`: periodicity class over a grid of two parameters, in parallel.
+// `stickslip-cli map`: periodicity class over a grid of two parameters, in parallel on the
+// threads of one process and, under mpirun, across ranks (cells interleaved over the ranks,
+// gathered on rank 0, which writes the CSV). --checkpoint logs each finished cell so that a
+// killed run resumes where it stopped. The CSV is the same byte for byte in every case.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <tuple>
 
+#include "cell_records.hpp"
 #include "cli_common.hpp"
+#include "mpi_runner.hpp"
 #include "core/analysis/periodicity_map.hpp"
 #include "core/io/csv_table.hpp"
 #include "core/io/units.hpp"
@@ -17,7 +22,7 @@ namespace {
 
 struct MapCliOptions {
     SimOptions sim;
-    std::string param = "A", from, to, param2 = "f", from2, to2, out;
+    std::string param = "A", from, to, param2 = "f", from2, to2, out, checkpoint;
     int steps = 20, steps2 = 20, threads = 0;
     long settle = 50, samples = 64, stepsPerPeriod = 0;
     double tol = 1e-4;
@@ -28,6 +33,53 @@ std::string num(double v) {
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.10g", v);
     return buf;
+}
+
+// Every setting that changes a cell's result (not --threads, --progress, --out), for the
+// checkpoint's fingerprint: the options as given and the parameters they resolved to.
+std::string settingsText(const MapCliOptions& o, const SimParams& p, const MapOptions& mo) {
+    char buf[64];
+    auto g = [&](double v) { std::snprintf(buf, sizeof buf, "%.17g", v); return std::string(buf); };
+    std::string t = std::string("map ") + kVersion + "\npreset " + o.sim.preset + "\nmodel " + o.sim.model +
+                    "\nsetup " + o.sim.setup + "\ndt " + o.sim.dt + "\n";
+    for (const std::string& s : o.sim.sets) t += "set " + s + "\n";
+    for (const std::string& k : paramKeys()) {
+        double v = 0;
+        if (getParam(p, k, v)) t += k + " " + g(v) + "\n";
+    }
+    t += std::string("law ") + toString(p.law) + "\nsetup " + toString(p.setup) + "\n";
+    t += mo.key1 + " " + g(mo.from1) + " " + g(mo.to1) + " " + std::to_string(mo.steps1) + "\n";
+    t += mo.key2 + " " + g(mo.from2) + " " + g(mo.to2) + " " + std::to_string(mo.steps2) + "\n";
+    t += "settle " + std::to_string(mo.settleCycles) + " samples " + std::to_string(mo.sampleCycles) + " n " +
+         std::to_string(stepsPerPeriodFor(p, mo.stepsPerPeriod)) + " tol " + g(mo.classify.relTol) + "\n";
+    return t;
+}
+
+// Rank 0: opens the checkpoint (when asked) and lists the cells still to compute; every rank
+// gets the list. Returns kOk or the error code (reported on rank 0).
+int plannedCells(const MapCliOptions& o, const SimParams& p, const MapOptions& mo, MapCheckpoint& ckpt,
+                 std::vector<MapCell>& records, std::vector<std::size_t>& todo, int& exitCode) {
+    const std::size_t cells = mapCellCount(mo);
+    int rc = kOk;
+    if (mpiRank() == 0) {
+        std::string error;
+        if (!o.checkpoint.empty() &&
+            !ckpt.open(o.checkpoint, fingerprint(settingsText(o, p, mo)), cells, records, &error)) {
+            reportError("map", error, kBadInput, exitCode);
+            rc = kBadInput;
+        }
+        std::vector<unsigned char> have(cells, 0);
+        for (const MapCell& c : records) have[c.index] = 1;
+        for (std::size_t i = 0; i < cells; ++i)
+            if (!have[i]) todo.push_back(i);
+    }
+    rc = mpiBroadcastInt(rc);
+    if (rc != kOk) {
+        exitCode = rc;
+        return rc;
+    }
+    todo = mpiBroadcastIndices(todo);
+    return kOk;
 }
 
 void runMap(const MapCliOptions& o, int& exitCode) {
@@ -63,10 +115,31 @@ void runMap(const MapCliOptions& o, int& exitCode) {
         reportError("map", formatIssues(issues), kBadArguments, exitCode);
         return;
     }
-    RunControl ctl;
-    if (o.progress) ctl.progress = [](double f) { std::fprintf(stderr, "\rmap: %5.1f %%", 100.0 * f); };
-    const PeriodicityMap m = periodicityMap(p, mo, ctl);
+    MapCheckpoint ckpt;
+    std::vector<MapCell> records;
+    std::vector<std::size_t> todo;
+    if (plannedCells(o, p, mo, ckpt, records, todo, exitCode) != kOk) return;
+    const std::size_t total = mapCellCount(mo);
+    std::string ckptError;
+    mpiDistribute(
+        todo,
+        [&](const std::vector<std::size_t>& mine, const EmitFn& emit) {
+            periodicityMapCells(p, mo, mine, {}, [&](const MapCell& c) { emit(encodeMapCell(c)); });
+        },
+        [&](const std::string& bytes) {
+            MapCell c;
+            if (!decodeMapCell(bytes, c)) c = MapCell{};  // cannot happen between ranks of one binary
+            records.push_back(c);
+            if (ckptError.empty()) ckpt.append(c, &ckptError);
+            if (o.progress)
+                std::fprintf(stderr, "\rmap: %5.1f %%", 100.0 * static_cast<double>(records.size()) / double(total));
+        });
+    if (mpiRank() != 0) {
+        exitCode = kOk;  // rank 0 writes the output and reports
+        return;
+    }
     if (o.progress) std::fprintf(stderr, "\n");
+    const PeriodicityMap m = assemblePeriodicityMap(p, mo, records);
     std::string csv = std::string("# stickslip-cli ") + kVersion + " map\n# param = " + o.param + " [" + u1 +
                       "]\n# param2 = " + o.param2 + " [" + u2 + "]\n# settle = " + std::to_string(mo.settleCycles) +
                       " cycles, samples = " + std::to_string(mo.sampleCycles) + ", steps per period = " +
@@ -85,6 +158,7 @@ void runMap(const MapCliOptions& o, int& exitCode) {
         reportError("map", error, kBadInput, exitCode);
         return;
     }
+    if (!ckptError.empty()) { reportError("map", ckptError, kBadInput, exitCode); return; }
     if (m.status == RunStatus::Failed) { reportError("map", "map failed: " + m.message, kRunFailed, exitCode); return; }
     if (m.status == RunStatus::Cancelled) { reportError("map", "map cancelled", kCancelled, exitCode); return; }
     exitCode = kOk;
@@ -108,9 +182,13 @@ void addMapCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--samples", opts->samples, "Poincare samples per cell")->capture_default_str();
     cmd->add_option("--steps-per-period", opts->stepsPerPeriod, "Time steps per forcing period (0 = from --dt)")
         ->capture_default_str();
-    cmd->add_option("--threads", opts->threads, "Threads (0 = all cores)")->capture_default_str();
+    cmd->add_option("--threads", opts->threads, "Threads per process (0 = all cores; under mpirun per rank)")
+        ->capture_default_str();
     cmd->add_option("--tol", opts->tol, "Relative tolerance of the period test")->capture_default_str();
     cmd->add_flag("--progress", opts->progress, "Print progress on stderr");
+    cmd->add_option("--checkpoint", opts->checkpoint,
+                    "Log each finished cell to FILE; an existing FILE from the same settings is resumed (its cells "
+                    "are not computed again), one from other settings is refused");
     cmd->add_option("--out", opts->out, "Map CSV ('-' = stdout)")->required();
     cmd->callback([opts, &exitCode] { runMap(*opts, exitCode); });
 }

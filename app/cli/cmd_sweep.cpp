@@ -1,5 +1,7 @@
 // `stickslip-cli sweep`: bifurcation sweep of one parameter (continuation or independent),
-// writing the Poincaré samples (--out) and a per-value summary (--summary).
+// writing the Poincaré samples (--out) and a per-value summary (--summary). Under mpirun the
+// independent mode interleaves its values over the ranks and rank 0 writes the files (the same
+// bytes as one process); a continuation is sequential and runs on rank 0 alone.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -7,7 +9,9 @@
 #include <tuple>
 #include <numbers>
 
+#include "cell_records.hpp"
 #include "cli_common.hpp"
+#include "mpi_runner.hpp"
 #include "core/analysis/sweep.hpp"
 #include "core/io/csv_table.hpp"
 #include "core/io/units.hpp"
@@ -32,6 +36,28 @@ std::string num(double v) {
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.10g", v);
     return buf;
+}
+
+// Independent mode across the ranks (or on this process alone): every value's record is
+// streamed to rank 0, which assembles the result. Other ranks get an empty result.
+SweepResult distributedIndependentSweep(const SimParams& p, const SweepOptions& so, bool progress) {
+    std::vector<std::size_t> all(static_cast<std::size_t>(so.steps));
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    std::vector<SweepValueRecord> records;
+    mpiDistribute(
+        all,
+        [&](const std::vector<std::size_t>& mine, const EmitFn& emit) {
+            independentSweepValues(p, so, mine, {}, [&](const SweepValueRecord& r) { emit(encodeSweepValue(r)); });
+        },
+        [&](const std::string& bytes) {
+            SweepValueRecord r;
+            if (!decodeSweepValue(bytes, r)) r = SweepValueRecord{};  // cannot happen between ranks of one binary
+            records.push_back(std::move(r));
+            if (progress)
+                std::fprintf(stderr, "\rsweep: %5.1f %%", 100.0 * static_cast<double>(records.size()) / double(all.size()));
+        });
+    if (mpiRank() != 0) return {};
+    return assembleIndependentSweep(p, so, records);
 }
 
 void runSweep(const SweepCliOptions& o, int& exitCode) {
@@ -80,7 +106,18 @@ void runSweep(const SweepCliOptions& o, int& exitCode) {
     RunControl ctl;
     if (o.progress)
         ctl.progress = [](double f) { std::fprintf(stderr, "\rsweep: %5.1f %%", 100.0 * f); };
-    const SweepResult r = bifurcationSweep(p, so, ctl);
+    if (so.mode == SweepMode::Continuation && mpiRank() != 0) {
+        exitCode = kOk;  // sequential by nature: rank 0 runs it alone
+        return;
+    }
+    if (so.mode == SweepMode::Continuation && mpiSize() > 1)
+        std::fprintf(stderr, "stickslip-cli sweep: a continuation is sequential; it runs on rank 0 only\n");
+    const SweepResult r = so.mode == SweepMode::Independent ? distributedIndependentSweep(p, so, o.progress)
+                                                            : bifurcationSweep(p, so, ctl);
+    if (mpiRank() != 0) {
+        exitCode = kOk;  // rank 0 writes the output and reports
+        return;
+    }
     if (o.progress) std::fprintf(stderr, "\n");
 
     std::string head = std::string("# stickslip-cli ") + kVersion + " sweep\n# param = " + o.param + " [" + unit +
