@@ -122,7 +122,7 @@ void runMap(const MapCliOptions& o, int& exitCode) {
     const std::size_t total = mapCellCount(mo);
     std::string ckptError;
     mpiDistribute(
-        todo,
+        todo, batchSize(mo.threads),
         [&](const std::vector<std::size_t>& mine, const EmitFn& emit) {
             periodicityMapCells(p, mo, mine, {}, [&](const MapCell& c) { emit(encodeMapCell(c)); });
         },

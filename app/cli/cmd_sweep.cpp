@@ -45,7 +45,7 @@ SweepResult distributedIndependentSweep(const SimParams& p, const SweepOptions& 
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
     std::vector<SweepValueRecord> records;
     mpiDistribute(
-        all,
+        all, batchSize(so.threads),
         [&](const std::vector<std::size_t>& mine, const EmitFn& emit) {
             independentSweepValues(p, so, mine, {}, [&](const SweepValueRecord& r) { emit(encodeSweepValue(r)); });
         },

@@ -1,12 +1,17 @@
 #include "mpi_runner.hpp"
 
 #include <cstdlib>
+#include <limits>
+
+#include "core/analysis/parallel.hpp"
 
 #ifdef STICKSLIP_HAVE_MPI
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
+#include <cstring>
 #include <deque>
 #include <mutex>
 #include <thread>
@@ -14,16 +19,9 @@
 
 namespace stickslip::cli {
 
-namespace {
-
-std::vector<std::size_t> myShare(const std::vector<std::size_t>& indices, int rank, int size) {
-    std::vector<std::size_t> mine;
-    for (std::size_t k = static_cast<std::size_t>(rank); k < indices.size(); k += static_cast<std::size_t>(size))
-        mine.push_back(indices[k]);
-    return mine;
+std::size_t batchSize(int threads) {
+    return static_cast<std::size_t>(workerCount(threads, std::numeric_limits<std::size_t>::max()));
 }
-
-}  // namespace
 
 #ifndef STICKSLIP_HAVE_MPI
 
@@ -34,10 +32,10 @@ int mpiSize() { return 1; }
 int mpiBroadcastInt(int v) { return v; }
 std::vector<std::size_t> mpiBroadcastIndices(const std::vector<std::size_t>& v) { return v; }
 
-void mpiDistribute(const std::vector<std::size_t>& indices,
+void mpiDistribute(const std::vector<std::size_t>& indices, std::size_t,
                    const std::function<void(const std::vector<std::size_t>&, const EmitFn&)>& compute,
                    const std::function<void(const std::string&)>& deliver) {
-    compute(myShare(indices, 0, 1), [&](std::string r) { deliver(r); });
+    compute(indices, [&](std::string r) { deliver(r); });
 }
 
 #else
@@ -46,7 +44,10 @@ namespace {
 
 bool g_started = false;
 int g_rank = 0, g_size = 1;
-constexpr int kTagRecord = 1, kTagDone = 2;
+// Worker → rank 0: a finished record, or a request for the next batch (after every record of
+// the previous batch, so MPI's in-order delivery between two ranks means an answered
+// "no more work" request leaves nothing of that rank in flight). Rank 0 → worker: a batch.
+constexpr int kTagRecord = 1, kTagRequest = 2, kTagBatch = 3;
 
 bool launchedByMpi() {
     for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
@@ -71,11 +72,30 @@ struct Mailbox {
     }
 };
 
-// Rank 0: deliver its own records and every other rank's until all ranks said done. Polls
-// (Iprobe, then a short wait on the mailbox) because a blocking MPI_Recv spins a core in
-// OpenMPI, which would steal it from rank 0's own compute threads.
-void collect(Mailbox& box, const std::function<void(const std::string&)>& deliver) {
-    int ranksDone = 0;
+// The queue of work on rank 0, shared by the MPI thread (serving other ranks) and rank 0's own
+// compute thread.
+struct Queue {
+    std::mutex lock;
+    const std::vector<std::size_t>& indices;
+    std::size_t next = 0;
+    std::vector<std::size_t> take(std::size_t n) {
+        std::lock_guard<std::mutex> lk(lock);
+        const std::size_t end = std::min(indices.size(), next + n);
+        std::vector<std::size_t> batch(indices.begin() + static_cast<std::ptrdiff_t>(next),
+                                       indices.begin() + static_cast<std::ptrdiff_t>(end));
+        next = end;
+        return batch;
+    }
+};
+
+std::vector<unsigned long long> wire(const std::vector<std::size_t>& v) { return {v.begin(), v.end()}; }
+
+// Rank 0's MPI thread: hand out batches on request and deliver every record (its own compute
+// thread's and the other ranks') until all ranks were told "no more". Polls (Iprobe, then a
+// short wait on the mailbox) because a blocking MPI_Recv spins a core in OpenMPI, which would
+// steal it from rank 0's compute threads.
+void serve(Queue& queue, Mailbox& box, const std::function<void(const std::string&)>& deliver) {
+    int stopped = 0;
     for (;;) {
         std::deque<std::string> mine;
         bool localFinished = false;
@@ -83,7 +103,7 @@ void collect(Mailbox& box, const std::function<void(const std::string&)>& delive
             std::unique_lock<std::mutex> lk(box.lock);
             box.wake.wait_for(lk, std::chrono::milliseconds(2), [&] { return !box.records.empty() || box.finished; });
             mine.swap(box.records);
-            localFinished = box.finished;
+            localFinished = box.finished && box.records.empty();
         }
         for (const std::string& r : mine) deliver(r);
         for (;;) {
@@ -95,29 +115,62 @@ void collect(Mailbox& box, const std::function<void(const std::string&)>& delive
             MPI_Get_count(&st, MPI_BYTE, &count);
             std::string r(static_cast<std::size_t>(count), '\0');
             MPI_Recv(r.data(), count, MPI_BYTE, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-            if (st.MPI_TAG == kTagRecord) deliver(r);
-            else ++ranksDone;
+            if (st.MPI_TAG == kTagRecord) {
+                deliver(r);
+                continue;
+            }
+            // A request names its batch size: one item per thread of that rank.
+            unsigned long long want = 1;
+            if (r.size() == sizeof want) std::memcpy(&want, r.data(), sizeof want);
+            const auto next = wire(queue.take(static_cast<std::size_t>(std::max(want, 1ull))));
+            MPI_Send(next.data(), static_cast<int>(next.size()), MPI_UNSIGNED_LONG_LONG, st.MPI_SOURCE, kTagBatch,
+                     MPI_COMM_WORLD);
+            if (next.empty()) ++stopped;
         }
-        if (localFinished && ranksDone == g_size - 1) {
-            std::lock_guard<std::mutex> lk(box.lock);
-            if (box.records.empty()) return;
-        }
+        if (localFinished && stopped == g_size - 1) return;
     }
 }
 
-// Other ranks: send each record to rank 0 as soon as it exists (a killed job loses only the
-// items in flight), then a done message.
-void forward(Mailbox& box) {
+// Rank 0's compute thread: batches from the same queue until it is empty.
+void computeLocal(Queue& queue, std::size_t batch, Mailbox& box,
+                  const std::function<void(const std::vector<std::size_t>&, const EmitFn&)>& compute) {
     for (;;) {
-        std::unique_lock<std::mutex> lk(box.lock);
-        box.wake.wait(lk, [&] { return !box.records.empty() || box.finished; });
-        if (box.records.empty()) break;
-        std::string r = std::move(box.records.front());
-        box.records.pop_front();
-        lk.unlock();
-        MPI_Send(r.data(), static_cast<int>(r.size()), MPI_BYTE, 0, kTagRecord, MPI_COMM_WORLD);
+        const std::vector<std::size_t> mine = queue.take(batch);
+        if (mine.empty()) break;
+        compute(mine, [&](std::string r) { box.push(std::move(r)); });
     }
-    MPI_Send(nullptr, 0, MPI_BYTE, 0, kTagDone, MPI_COMM_WORLD);
+    box.finish();
+}
+
+// Other ranks: ask for a batch, compute it while sending each record to rank 0 as soon as it
+// exists (a killed job loses only the items in flight), repeat until the batch is empty.
+void work(std::size_t batch, const std::function<void(const std::vector<std::size_t>&, const EmitFn&)>& compute) {
+    for (;;) {
+        unsigned long long want = batch;
+        MPI_Send(&want, static_cast<int>(sizeof want), MPI_BYTE, 0, kTagRequest, MPI_COMM_WORLD);
+        std::vector<unsigned long long> next(batch);
+        MPI_Status st;
+        MPI_Recv(next.data(), static_cast<int>(batch), MPI_UNSIGNED_LONG_LONG, 0, kTagBatch, MPI_COMM_WORLD, &st);
+        int count = 0;
+        MPI_Get_count(&st, MPI_UNSIGNED_LONG_LONG, &count);
+        if (count == 0) return;
+        const std::vector<std::size_t> mine(next.begin(), next.begin() + count);
+        Mailbox box;
+        std::thread worker([&] {
+            compute(mine, [&](std::string r) { box.push(std::move(r)); });
+            box.finish();
+        });
+        for (;;) {
+            std::unique_lock<std::mutex> lk(box.lock);
+            box.wake.wait(lk, [&] { return !box.records.empty() || box.finished; });
+            if (box.records.empty()) break;
+            std::string r = std::move(box.records.front());
+            box.records.pop_front();
+            lk.unlock();
+            MPI_Send(r.data(), static_cast<int>(r.size()), MPI_BYTE, 0, kTagRecord, MPI_COMM_WORLD);
+        }
+        worker.join();
+    }
 }
 
 }  // namespace
@@ -148,28 +201,29 @@ std::vector<std::size_t> mpiBroadcastIndices(const std::vector<std::size_t>& v) 
     if (g_size == 1) return v;
     unsigned long long n = v.size();
     MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
-    std::vector<unsigned long long> buf(v.begin(), v.end());
+    std::vector<unsigned long long> buf = wire(v);
     buf.resize(static_cast<std::size_t>(n));
     MPI_Bcast(buf.data(), static_cast<int>(n), MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
     return {buf.begin(), buf.end()};
 }
 
-void mpiDistribute(const std::vector<std::size_t>& indices,
+void mpiDistribute(const std::vector<std::size_t>& indices, std::size_t batch,
                    const std::function<void(const std::vector<std::size_t>&, const EmitFn&)>& compute,
                    const std::function<void(const std::string&)>& deliver) {
-    const std::vector<std::size_t> mine = myShare(indices, g_rank, g_size);
     if (g_size == 1) {
-        compute(mine, [&](std::string r) { deliver(r); });
+        compute(indices, [&](std::string r) { deliver(r); });
         return;
     }
+    batch = std::max<std::size_t>(batch, 1);
+    if (g_rank != 0) {
+        work(batch, compute);
+        return;
+    }
+    Queue queue{{}, indices};
     Mailbox box;
-    std::thread worker([&] {
-        compute(mine, [&](std::string r) { box.push(std::move(r)); });
-        box.finish();
-    });
-    if (g_rank == 0) collect(box, deliver);
-    else forward(box);
-    worker.join();
+    std::thread local([&] { computeLocal(queue, batch, box, compute); });
+    serve(queue, box, deliver);
+    local.join();
 }
 
 #endif

@@ -1,7 +1,8 @@
 // The only place stickslip-cli talks MPI (mpi_runner.cpp; a no-MPI fallback is compiled when
 // CMake did not find MPI or STICKSLIP_WITH_MPI is OFF). The commands see a rank, a size and one
-// primitive: split a list of independent work items across the ranks and stream every finished
-// item's record (opaque bytes) to rank 0 as soon as it is done, so rank 0 can checkpoint it.
+// primitive: share a list of independent work items among the ranks (a rank-0 work queue) and
+// stream every finished item's record (opaque bytes) to rank 0 as soon as it is done, so rank 0
+// can checkpoint it.
 #pragma once
 
 #include <cstddef>
@@ -23,15 +24,21 @@ int mpiSize();   // 1 without MPI
 int mpiBroadcastInt(int v);
 std::vector<std::size_t> mpiBroadcastIndices(const std::vector<std::size_t>& v);
 
-// Computes items `indices[k]` for the k with k % size == rank (static interleaving), on every
-// rank. compute(mine, emit) must call emit(record) once per finished item; emit may be called
-// from worker threads but never concurrently (the core serialises its callbacks). On rank 0,
-// deliver(record) is called for every record of every rank, one at a time, on the calling
-// thread as records arrive (own records included); it returns when every rank has finished.
-// On the other ranks deliver is never called. With one process compute runs on the calling
-// thread and emit is deliver.
+// Computes every item of `indices` once, on some rank, and gathers the records on rank 0.
+// Rank 0 keeps a work queue: every rank, rank 0's own compute thread included, takes the next
+// `batch` items (pass the rank's thread count, so its thread pool stays busy) whenever it has
+// finished its previous batch, which balances cells of very different cost. compute(items,
+// emit) must call emit(record) once per finished item; emit may be called from worker threads
+// but never concurrently (the core serialises its callbacks). On rank 0, deliver(record) is
+// called for every record of every rank, one at a time, on the calling thread, as records
+// arrive; it returns when every rank has finished. On other ranks deliver is never called and
+// `indices` is not used (rank 0's list counts). With one process, compute runs once on all of
+// `indices` on the calling thread and emit is deliver (exactly the single-process path).
+// Items per work-queue batch for a rank running `threads` threads (0 = all cores).
+std::size_t batchSize(int threads);
+
 using EmitFn = std::function<void(std::string)>;
-void mpiDistribute(const std::vector<std::size_t>& indices,
+void mpiDistribute(const std::vector<std::size_t>& indices, std::size_t batch,
                    const std::function<void(const std::vector<std::size_t>&, const EmitFn&)>& compute,
                    const std::function<void(const std::string&)>& deliver);
 
