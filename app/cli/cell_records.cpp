@@ -149,12 +149,18 @@ std::string fingerprint(const std::string& text) {
 
 namespace {
 
-constexpr const char* kMagic = "# stickslip-cli map checkpoint v1";
-
 std::string where(const std::string& path, std::size_t line) { return path + ":" + std::to_string(line) + ": "; }
 
-// One "cell …" line; false when malformed or out of range.
-bool parseCellLine(const std::string& line, std::size_t cells, MapCell& c) {
+}  // namespace
+
+std::string formatMapCellLine(const MapCell& c) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "cell %zu %d %d %.17g %.17g", c.index, static_cast<int>(c.motion), c.period,
+                  c.stickFraction, c.maxRelVel_mps);
+    return buf;
+}
+
+bool parseMapCellLine(const std::string& line, std::size_t cells, MapCell& c) {
     unsigned long long index = 0;
     int motion = 0, period = 0, used = 0;
     double sf = 0, mrv = 0;
@@ -171,9 +177,40 @@ bool parseCellLine(const std::string& line, std::size_t cells, MapCell& c) {
     return true;
 }
 
-// Reads the complete lines of an existing checkpoint; `complete` is the byte length up to and
-// including the last newline (a torn last line is dropped).
-bool readCheckpoint(const std::string& path, const std::string& fp, std::size_t cells, std::vector<MapCell>& loaded,
+std::string formatSweepValueLine(const SweepValueRecord& r) {
+    static const char* hex = "0123456789abcdef";
+    const std::string bytes = encodeSweepValue(r);
+    std::string line = "value " + std::to_string(r.index) + " ";
+    for (unsigned char b : bytes) {
+        line += hex[b >> 4];
+        line += hex[b & 15];
+    }
+    return line;
+}
+
+bool parseSweepValueLine(const std::string& line, std::size_t values, SweepValueRecord& r) {
+    unsigned long long index = 0;
+    int used = 0;
+    if (std::sscanf(line.c_str(), "value %llu %n", &index, &used) != 1 || used == 0 || index >= values) return false;
+    const std::size_t n = line.size() - static_cast<std::size_t>(used);
+    if (n % 2 != 0) return false;
+    std::string bytes(n / 2, '\0');
+    auto nibble = [](char ch) { return ch >= '0' && ch <= '9' ? ch - '0' : ch >= 'a' && ch <= 'f' ? ch - 'a' + 10 : -1; };
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+        const int hi = nibble(line[used + 2 * i]), lo = nibble(line[used + 2 * i + 1]);
+        if (hi < 0 || lo < 0) return false;
+        bytes[i] = static_cast<char>(hi * 16 + lo);
+    }
+    return decodeSweepValue(bytes, r) && r.index == index && r.done && r.point.section.ok();
+}
+
+namespace {
+
+// Reads the complete lines of an existing checkpoint, passing each record line to accept();
+// `complete` is the byte length up to and including the last newline (a torn last line is
+// dropped).
+bool readCheckpoint(const std::string& path, const std::string (&header)[3],
+                    const std::function<bool(const std::string&)>& accept, const std::string& form,
                     std::uintmax_t& complete, std::string* error) {
     std::ifstream in(path, std::ios::binary);
     if (!in) { *error = path + ": cannot read checkpoint: " + std::strerror(errno); return false; }
@@ -182,32 +219,27 @@ bool readCheckpoint(const std::string& path, const std::string& fp, std::size_t 
     const std::string text = ss.str();
     const std::size_t lastNl = text.rfind('\n');
     complete = lastNl == std::string::npos ? 0 : lastNl + 1;
-    const std::string expect[3] = {kMagic, "# fingerprint " + fp, "# cells " + std::to_string(cells)};
     std::size_t pos = 0, lineNo = 0;
     while (pos < complete) {
         const std::size_t nl = text.find('\n', pos);
         const std::string line = text.substr(pos, nl - pos);
         pos = nl + 1;
         ++lineNo;
-        if (lineNo == 1 && line != kMagic) {
-            *error = where(path, 1) + "not a stickslip-cli map checkpoint (expected '" + kMagic + "')";
+        if (lineNo == 1 && line != header[0]) {
+            *error = where(path, 1) + "not a checkpoint of this command (expected '" + header[0] + "')";
             return false;
         }
-        if (lineNo <= 3 && line != expect[lineNo - 1]) {
-            *error = where(path, lineNo) + "checkpoint was written for other map settings ('" + line +
-                     "', this run needs '" + expect[lineNo - 1] +
+        if (lineNo <= 3 && line != header[lineNo - 1]) {
+            *error = where(path, lineNo) + "checkpoint was written for other settings ('" + line +
+                     "', this run needs '" + header[lineNo - 1] +
                      "'); use the original options, or delete the file or choose another --checkpoint";
             return false;
         }
-        if (lineNo <= 3) continue;
-        MapCell c;
-        if (!parseCellLine(line, cells, c)) {
-            *error = where(path, lineNo) + "malformed checkpoint record '" + line +
-                     "' (expected 'cell INDEX MOTION PERIOD STICK_FRACTION MAX_REL_VEL' with INDEX < " +
-                     std::to_string(cells) + ")";
+        if (lineNo > 3 && !accept(line)) {
+            *error = where(path, lineNo) + "malformed checkpoint record '" + line.substr(0, 80) +
+                     (line.size() > 80 ? "…" : "") + "' (expected '" + form + "')";
             return false;
         }
-        loaded.push_back(c);
     }
     if (complete > 0 && lineNo < 3) {
         *error = where(path, lineNo) + "checkpoint header is incomplete; delete the file to start afresh";
@@ -218,34 +250,34 @@ bool readCheckpoint(const std::string& path, const std::string& fp, std::size_t 
 
 }  // namespace
 
-MapCheckpoint::~MapCheckpoint() {
+CheckpointLog::~CheckpointLog() {
     if (file_) std::fclose(file_);
 }
 
-bool MapCheckpoint::open(const std::string& path, const std::string& fp, std::size_t cells,
-                         std::vector<MapCell>& loaded, std::string* error) {
+bool CheckpointLog::open(const std::string& path, const std::string& kind, const std::string& fp,
+                         const std::string& countLine, const std::function<bool(const std::string&)>& accept,
+                         const std::string& form, std::string* error) {
     path_ = path;
-    loaded.clear();
+    const std::string header[3] = {"# stickslip-cli " + kind + " checkpoint v1", "# fingerprint " + fp, "# " + countLine};
     std::error_code ec;
     std::uintmax_t complete = 0;
     const bool exists = std::filesystem::exists(path, ec);
-    if (exists && !readCheckpoint(path, fp, cells, loaded, complete, error)) return false;
+    if (exists && !readCheckpoint(path, header, accept, form, complete, error)) return false;
     // Cut a torn last line, so the next record starts on a line of its own.
     if (exists && std::filesystem::file_size(path, ec) != complete) std::filesystem::resize_file(path, complete, ec);
     if (ec) { *error = path + ": cannot truncate the torn last line: " + ec.message(); return false; }
     file_ = std::fopen(path.c_str(), "ab");
     if (!file_) { *error = path + ": cannot open checkpoint for writing: " + std::strerror(errno); return false; }
     if (complete == 0) {
-        std::fprintf(file_, "%s\n# fingerprint %s\n# cells %zu\n", kMagic, fp.c_str(), cells);
+        std::fprintf(file_, "%s\n%s\n%s\n", header[0].c_str(), header[1].c_str(), header[2].c_str());
         if (std::fflush(file_) != 0) { *error = path + ": cannot write checkpoint: " + std::strerror(errno); return false; }
     }
     return true;
 }
 
-bool MapCheckpoint::append(const MapCell& c, std::string* error) {
-    if (!file_ || c.status != RunStatus::Ok) return true;
-    std::fprintf(file_, "cell %zu %d %d %.17g %.17g\n", c.index, static_cast<int>(c.motion), c.period,
-                 c.stickFraction, c.maxRelVel_mps);
+bool CheckpointLog::append(const std::string& line, std::string* error) {
+    if (!file_) return true;
+    std::fprintf(file_, "%s\n", line.c_str());
     if (std::fflush(file_) != 0) {
         *error = path_ + ": cannot write checkpoint: " + std::strerror(errno);
         return false;

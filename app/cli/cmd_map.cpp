@@ -1,6 +1,6 @@
 // `stickslip-cli map`: periodicity class over a grid of two parameters, in parallel on the
-// threads of one process and, under mpirun, across ranks (cells interleaved over the ranks,
-// gathered on rank 0, which writes the CSV). --checkpoint logs each finished cell so that a
+// threads of one process and, under mpirun, across ranks (a rank-0 work queue hands out cells;
+// rank 0 gathers them and writes the CSV). --checkpoint logs each finished cell so that a
 // killed run resumes where it stopped. The CSV is the same byte for byte in every case.
 #include <cmath>
 #include <cstdio>
@@ -38,16 +38,8 @@ std::string num(double v) {
 // Every setting that changes a cell's result (not --threads, --progress, --out), for the
 // checkpoint's fingerprint: the options as given and the parameters they resolved to.
 std::string settingsText(const MapCliOptions& o, const SimParams& p, const MapOptions& mo) {
-    char buf[64];
-    auto g = [&](double v) { std::snprintf(buf, sizeof buf, "%.17g", v); return std::string(buf); };
-    std::string t = std::string("map ") + kVersion + "\npreset " + o.sim.preset + "\nmodel " + o.sim.model +
-                    "\nsetup " + o.sim.setup + "\ndt " + o.sim.dt + "\n";
-    for (const std::string& s : o.sim.sets) t += "set " + s + "\n";
-    for (const std::string& k : paramKeys()) {
-        double v = 0;
-        if (getParam(p, k, v)) t += k + " " + g(v) + "\n";
-    }
-    t += std::string("law ") + toString(p.law) + "\nsetup " + toString(p.setup) + "\n";
+    auto g = [](double v) { return exactNumber(v); };
+    std::string t = std::string("map ") + kVersion + "\n" + simSettingsText(o.sim, p);
     t += mo.key1 + " " + g(mo.from1) + " " + g(mo.to1) + " " + std::to_string(mo.steps1) + "\n";
     t += mo.key2 + " " + g(mo.from2) + " " + g(mo.to2) + " " + std::to_string(mo.steps2) + "\n";
     t += "settle " + std::to_string(mo.settleCycles) + " samples " + std::to_string(mo.sampleCycles) + " n " +
@@ -57,14 +49,21 @@ std::string settingsText(const MapCliOptions& o, const SimParams& p, const MapOp
 
 // Rank 0: opens the checkpoint (when asked) and lists the cells still to compute; every rank
 // gets the list. Returns kOk or the error code (reported on rank 0).
-int plannedCells(const MapCliOptions& o, const SimParams& p, const MapOptions& mo, MapCheckpoint& ckpt,
+int plannedCells(const MapCliOptions& o, const SimParams& p, const MapOptions& mo, CheckpointLog& ckpt,
                  std::vector<MapCell>& records, std::vector<std::size_t>& todo, int& exitCode) {
     const std::size_t cells = mapCellCount(mo);
     int rc = kOk;
     if (mpiRank() == 0) {
         std::string error;
-        if (!o.checkpoint.empty() &&
-            !ckpt.open(o.checkpoint, fingerprint(settingsText(o, p, mo)), cells, records, &error)) {
+        auto accept = [&](const std::string& line) {
+            MapCell c;
+            if (!parseMapCellLine(line, cells, c)) return false;
+            records.push_back(c);
+            return true;
+        };
+        const std::string form = "cell INDEX MOTION PERIOD STICK_FRACTION MAX_REL_VEL, INDEX < " + std::to_string(cells);
+        if (!o.checkpoint.empty() && !ckpt.open(o.checkpoint, "map", fingerprint(settingsText(o, p, mo)),
+                                                "cells " + std::to_string(cells), accept, form, &error)) {
             reportError("map", error, kBadInput, exitCode);
             rc = kBadInput;
         }
@@ -115,7 +114,7 @@ void runMap(const MapCliOptions& o, int& exitCode) {
         reportError("map", formatIssues(issues), kBadArguments, exitCode);
         return;
     }
-    MapCheckpoint ckpt;
+    CheckpointLog ckpt;
     std::vector<MapCell> records;
     std::vector<std::size_t> todo;
     if (plannedCells(o, p, mo, ckpt, records, todo, exitCode) != kOk) return;
@@ -130,7 +129,7 @@ void runMap(const MapCliOptions& o, int& exitCode) {
             MapCell c;
             if (!decodeMapCell(bytes, c)) c = MapCell{};  // cannot happen between ranks of one binary
             records.push_back(c);
-            if (ckptError.empty()) ckpt.append(c, &ckptError);
+            if (c.status == RunStatus::Ok && ckptError.empty()) ckpt.append(formatMapCellLine(c), &ckptError);
             if (o.progress)
                 std::fprintf(stderr, "\rmap: %5.1f %%", 100.0 * static_cast<double>(records.size()) / double(total));
         });

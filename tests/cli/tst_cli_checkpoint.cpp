@@ -1,7 +1,7 @@
-// stickslip-cli map --checkpoint, run as a separate process (no MPI needed): a run logs every
-// cell; a run killed with SIGKILL part way, or a log cut mid-line, resumes to a CSV that is
-// byte-identical to an uninterrupted run; a log from other settings or a malformed one is
-// refused with the file and line.
+// stickslip-cli map / sweep --mode independent --checkpoint, run as a separate process (no MPI
+// needed): a run logs every cell; a run killed with SIGKILL part way, or a log cut mid-line,
+// resumes to a CSV that is byte-identical to an uninterrupted run; a log from other settings,
+// another command or a malformed one is refused with the file and line.
 #include <QElapsedTimer>
 #include <QFile>
 #include <QProcess>
@@ -99,7 +99,7 @@ private slots:
     void foreignOrMalformedLogIsRefused() {
         const CliResult other = runCli(mapArgs(at("o.csv")) << "--settle" << "49" << "--checkpoint" << at("a.ckpt"));
         QCOMPARE(other.exitCode, 3);
-        QVERIFY2(other.err.contains("a.ckpt:2: checkpoint was written for other map settings"), other.err.constData());
+        QVERIFY2(other.err.contains("a.ckpt:2: checkpoint was written for other settings"), other.err.constData());
         QVERIFY(!QFile::exists(at("o.csv")));
         QByteArray log = readAll(at("a.ckpt"));
         log.replace("\ncell 4 ", "\ncell 4 x ");
@@ -118,7 +118,40 @@ private slots:
         g.close();
         const CliResult foreign = runCli(mapArgs(at("o.csv")) << "--checkpoint" << at("notmine.ckpt"));
         QCOMPARE(foreign.exitCode, 3);
-        QVERIFY2(foreign.err.contains("notmine.ckpt:1: not a stickslip-cli map checkpoint"), foreign.err.constData());
+        QVERIFY2(foreign.err.contains("notmine.ckpt:1: not a checkpoint of this command"), foreign.err.constData());
+    }
+
+    void independentSweepResumesByteIdentical() {
+        const QStringList args{"sweep", "--preset", "fig20", "--from", "0.2mm", "--to", "3mm", "--steps", "9",
+                               "--mode", "independent", "--direction", "both", "--settle", "20", "--samples", "24"};
+        const CliResult ref = runCli(args + QStringList{"--out", at("s.csv"), "--summary", at("ss.csv")});
+        QVERIFY2(ref.exitCode == 0, ref.err.constData());
+        const CliResult full = runCli(args + QStringList{"--out", at("s1.csv"), "--summary", at("s1s.csv"),
+                                                         "--checkpoint", at("s.ckpt")});
+        QVERIFY2(full.exitCode == 0, full.err.constData());
+        QCOMPARE(readAll(at("s1.csv")), readAll(at("s.csv")));
+        QCOMPARE(readAll(at("s1s.csv")), readAll(at("ss.csv")));
+        const QByteArray log = readAll(at("s.ckpt"));
+        QVERIFY(log.startsWith("# stickslip-cli sweep checkpoint v1\n"));
+        QCOMPARE(int(log.count("\nvalue ")), 9);
+        QFile f(at("s.ckpt"));
+        QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        f.write(log.left(log.size() / 2));  // cuts a value's line in the middle
+        f.close();
+        const CliResult resumed = runCli(args + QStringList{"--out", at("s2.csv"), "--summary", at("s2s.csv"),
+                                                            "--checkpoint", at("s.ckpt")});
+        QVERIFY2(resumed.exitCode == 0, resumed.err.constData());
+        QCOMPARE(readAll(at("s2.csv")), readAll(at("s.csv")));
+        QCOMPARE(readAll(at("s2s.csv")), readAll(at("ss.csv")));
+        QCOMPARE(int(readAll(at("s.ckpt")).count("\nvalue ")), 9);
+        // A map's log is not a sweep's; a continuation cannot resume at all.
+        const CliResult wrong = runCli(args + QStringList{"--out", at("s3.csv"), "--checkpoint", at("a.ckpt")});
+        QCOMPARE(wrong.exitCode, 3);
+        QVERIFY2(wrong.err.contains("a.ckpt:1: not a checkpoint of this command"), wrong.err.constData());
+        const CliResult cont = runCli({"sweep", "--from", "1mm", "--to", "2mm", "--out", at("s4.csv"), "--checkpoint",
+                                       at("c.ckpt")});
+        QCOMPARE(cont.exitCode, 2);
+        QVERIFY(cont.err.contains("--checkpoint needs --mode independent"));
     }
 };
 

@@ -1,5 +1,5 @@
 // stickslip-cli under `mpirun -np 2 --oversubscribe` (registered only when CMake found MPI):
-// map, sweep --mode independent and a resumed map checkpoint write byte for byte what one
+// map, sweep --mode independent and resumed checkpoints of both write byte for byte what one
 // process writes; a bad option fails on every rank with one message.
 #include <QFile>
 #include <QProcess>
@@ -79,6 +79,20 @@ private slots:
         QVERIFY(readAll(at("s1s.csv")).contains("# status = ok"));
         QCOMPARE(readAll(at("s2.csv")), readAll(at("s1.csv")));
         QCOMPARE(readAll(at("s2s.csv")), readAll(at("s1s.csv")));
+        // Logged by two ranks, cut mid-line, resumed by two ranks.
+        const CliResult logged = runMpi(2, args + QStringList{"--out", at("s3.csv"), "--checkpoint", at("s.ckpt")});
+        QVERIFY2(logged.exitCode == 0, logged.err.constData());
+        const QByteArray log = readAll(at("s.ckpt"));
+        QCOMPARE(int(log.count("\nvalue ")), 7);
+        QFile f(at("s.ckpt"));
+        QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        f.write(log.left(log.size() / 2));
+        f.close();
+        const CliResult resumed = runMpi(2, args + QStringList{"--out", at("s4.csv"), "--summary", at("s4s.csv"),
+                                                               "--checkpoint", at("s.ckpt")});
+        QVERIFY2(resumed.exitCode == 0, resumed.err.constData());
+        QCOMPARE(readAll(at("s4.csv")), readAll(at("s1.csv")));
+        QCOMPARE(readAll(at("s4s.csv")), readAll(at("s1s.csv")));
     }
 
     void checkpointResumesAcrossRankCounts() {
