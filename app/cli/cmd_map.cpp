@@ -81,6 +81,26 @@ int plannedCells(const MapCliOptions& o, const SimParams& p, const MapOptions& m
     return kOk;
 }
 
+// The map CSV exactly as a one-process run writes it (cells row by row, done ones only).
+std::string mapCsv(const MapCliOptions& o, const std::string& u1, const std::string& u2, const SimParams& p,
+                   const MapOptions& mo, const PeriodicityMap& m) {
+    std::string csv = std::string("# stickslip-cli ") + kVersion + " map\n# param = " + o.param + " [" + u1 +
+                      "]\n# param2 = " + o.param2 + " [" + u2 + "]\n# settle = " + std::to_string(mo.settleCycles) +
+                      " cycles, samples = " + std::to_string(mo.sampleCycles) + ", steps per period = " +
+                      std::to_string(stepsPerPeriodFor(p, mo.stepsPerPeriod)) + ", period tolerance = " +
+                      num(mo.classify.relTol) + "\n# status = " + toString(m.status) +
+                      (m.message.empty() ? "" : " (" + m.message + ")") + "\n";
+    csv += "param_value,param2_value,class,period,stick_fraction,max_rel_vel_mps\n";
+    for (std::size_t i2 = 0; i2 < m.values2.size(); ++i2)
+        for (std::size_t i1 = 0; i1 < m.values1.size(); ++i1) {
+            const std::size_t k = m.index(i1, i2);
+            if (!m.done[k]) continue;
+            csv += num(m.values1[i1]) + "," + num(m.values2[i2]) + "," + toString(m.motion[k]) + "," +
+                   std::to_string(m.period[k]) + "," + num(m.stickFraction[k]) + "," + num(m.maxRelVel_mps[k]) + "\n";
+        }
+    return csv;
+}
+
 void runMap(const MapCliOptions& o, int& exitCode) {
     SimParams p;
     std::string error;
@@ -139,20 +159,7 @@ void runMap(const MapCliOptions& o, int& exitCode) {
     }
     if (o.progress) std::fprintf(stderr, "\n");
     const PeriodicityMap m = assemblePeriodicityMap(p, mo, records);
-    std::string csv = std::string("# stickslip-cli ") + kVersion + " map\n# param = " + o.param + " [" + u1 +
-                      "]\n# param2 = " + o.param2 + " [" + u2 + "]\n# settle = " + std::to_string(mo.settleCycles) +
-                      " cycles, samples = " + std::to_string(mo.sampleCycles) + ", steps per period = " +
-                      std::to_string(stepsPerPeriodFor(p, mo.stepsPerPeriod)) + ", period tolerance = " +
-                      num(mo.classify.relTol) + "\n# status = " + toString(m.status) +
-                      (m.message.empty() ? "" : " (" + m.message + ")") + "\n";
-    csv += "param_value,param2_value,class,period,stick_fraction,max_rel_vel_mps\n";
-    for (std::size_t i2 = 0; i2 < m.values2.size(); ++i2)
-        for (std::size_t i1 = 0; i1 < m.values1.size(); ++i1) {
-            const std::size_t k = m.index(i1, i2);
-            if (!m.done[k]) continue;
-            csv += num(m.values1[i1]) + "," + num(m.values2[i2]) + "," + toString(m.motion[k]) + "," +
-                   std::to_string(m.period[k]) + "," + num(m.stickFraction[k]) + "," + num(m.maxRelVel_mps[k]) + "\n";
-        }
+    const std::string csv = mapCsv(o, u1, u2, p, mo, m);
     if (!io::writeFileAtomically(o.out, csv, &error)) {
         reportError("map", error, kBadInput, exitCode);
         return;

@@ -116,6 +116,41 @@ bool distributedIndependentSweep(const SweepCliOptions& o, const SimParams& p, c
     return true;
 }
 
+// Rank 0 (or the single process): the samples CSV (--out) and the summary (--summary).
+bool writeSweepFiles(const SweepCliOptions& o, const std::string& unit, const SimParams& p, const SweepOptions& so,
+                     const SweepResult& r, int& exitCode) {
+    std::string error;
+    std::string head = std::string("# stickslip-cli ") + kVersion + " sweep\n# param = " + o.param + " [" + unit +
+                       "]\n# mode = " + toString(so.mode) + ", direction = " + toString(so.direction) +
+                       (so.concurrentBranches ? " (branches concurrent: down starts from rest at the top value)" : "") +
+                       "\n# settle = " + std::to_string(so.settleCycles) + " cycles, samples = " +
+                       std::to_string(so.sampleCycles) + ", steps per period = " +
+                       std::to_string(stepsPerPeriodFor(p, so.stepsPerPeriod)) + ", period tolerance = " +
+                       num(so.classify.relTol) + "\n# status = " + toString(r.status) +
+                       (r.message.empty() ? "" : " (" + r.message + ")") + "\n";
+    for (const std::string& k : paramKeys()) {
+        double v = 0;
+        if (k != o.param && getParam(p, k, v)) head += "# " + k + " = " + num(v) + "\n";
+    }
+    std::string csv = head + "param_value,direction,sample,slider_disp_m,rel_vel_mps,friction_ratio\n";
+    std::string sum = head + "param_value,direction,class,period,stick_fraction,max_rel_vel_mps,lyapunov_per_s\n";
+    for (const SweepPoint& pt : r.points) {
+        const std::string v = num(pt.value), dir = pt.direction > 0 ? "up" : "down";
+        for (std::size_t i = 0; i < pt.section.size(); ++i)
+            csv += v + "," + dir + "," + std::to_string(i) + "," + num(pt.section.slider_m[i]) + "," +
+                   num(pt.section.relVel_mps[i]) + "," + num(pt.section.ratio[i]) + "\n";
+        sum += v + "," + dir + "," + toString(pt.classification.motion) + "," +
+               std::to_string(pt.classification.period) + "," + num(pt.classification.stickFraction) + "," +
+               num(pt.classification.maxRelVel_mps) + "," + num(pt.lyapunovPerSecond) + "\n";
+    }
+    if (!io::writeFileAtomically(o.out, csv, &error) ||
+        (!o.summary.empty() && !io::writeFileAtomically(o.summary, sum, &error))) {
+        reportError("sweep", error, kBadInput, exitCode);
+        return false;
+    }
+    return true;
+}
+
 void runSweep(const SweepCliOptions& o, int& exitCode) {
     SimParams p;
     std::string error;
@@ -181,35 +216,7 @@ void runSweep(const SweepCliOptions& o, int& exitCode) {
         return;
     }
     if (o.progress) std::fprintf(stderr, "\n");
-
-    std::string head = std::string("# stickslip-cli ") + kVersion + " sweep\n# param = " + o.param + " [" + unit +
-                       "]\n# mode = " + toString(so.mode) + ", direction = " + toString(so.direction) +
-                       (so.concurrentBranches ? " (branches concurrent: down starts from rest at the top value)" : "") +
-                       "\n# settle = " + std::to_string(so.settleCycles) + " cycles, samples = " +
-                       std::to_string(so.sampleCycles) + ", steps per period = " +
-                       std::to_string(stepsPerPeriodFor(p, so.stepsPerPeriod)) + ", period tolerance = " +
-                       num(so.classify.relTol) + "\n# status = " + toString(r.status) +
-                       (r.message.empty() ? "" : " (" + r.message + ")") + "\n";
-    for (const std::string& k : paramKeys()) {
-        double v = 0;
-        if (k != o.param && getParam(p, k, v)) head += "# " + k + " = " + num(v) + "\n";
-    }
-    std::string csv = head + "param_value,direction,sample,slider_disp_m,rel_vel_mps,friction_ratio\n";
-    std::string sum = head + "param_value,direction,class,period,stick_fraction,max_rel_vel_mps,lyapunov_per_s\n";
-    for (const SweepPoint& pt : r.points) {
-        const std::string v = num(pt.value), dir = pt.direction > 0 ? "up" : "down";
-        for (std::size_t i = 0; i < pt.section.size(); ++i)
-            csv += v + "," + dir + "," + std::to_string(i) + "," + num(pt.section.slider_m[i]) + "," +
-                   num(pt.section.relVel_mps[i]) + "," + num(pt.section.ratio[i]) + "\n";
-        sum += v + "," + dir + "," + toString(pt.classification.motion) + "," +
-               std::to_string(pt.classification.period) + "," + num(pt.classification.stickFraction) + "," +
-               num(pt.classification.maxRelVel_mps) + "," + num(pt.lyapunovPerSecond) + "\n";
-    }
-    if (!io::writeFileAtomically(o.out, csv, &error) ||
-        (!o.summary.empty() && !io::writeFileAtomically(o.summary, sum, &error))) {
-        reportError("sweep", error, kBadInput, exitCode);
-        return;
-    }
+    if (!writeSweepFiles(o, unit, p, so, r, exitCode)) return;
     if (r.status == RunStatus::Failed) { reportError("sweep", "sweep failed: " + r.message, kRunFailed, exitCode); return; }
     if (r.status == RunStatus::Cancelled) { reportError("sweep", "sweep cancelled", kCancelled, exitCode); return; }
     exitCode = kOk;
