@@ -241,7 +241,7 @@ void addSweepCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--mode", opts->mode, "continuation (state carried over) or independent (each value from rest, "
                                           "in parallel)")
         ->capture_default_str();
-    cmd->add_option("--threads", opts->threads, "Threads for --mode independent, --concurrent-branches, and the Lyapunov companion trajectory in continuation (0 = all cores)")
+    cmd->add_option("--threads", opts->threads, "Threads for --mode independent, --concurrent-branches, and the Lyapunov companion trajectory in continuation (0 = all cores; under mpirun per rank)")
         ->capture_default_str();
     cmd->add_flag("--concurrent-branches", opts->concurrentBranches,
                   "With --direction both: start the down branch from rest at the top value (after a settle+samples "
