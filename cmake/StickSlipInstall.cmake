@@ -20,6 +20,12 @@ endif()
 # Generated after every CLI build (app/cli/CMakeLists.txt).
 install(FILES "${PROJECT_BINARY_DIR}/man/stickslip-cli.1" DESTINATION "${CMAKE_INSTALL_MANDIR}/man1")
 
+# The Python module, where Debian's python3 looks for packages under a prefix
+# (P/lib/python3/dist-packages; for another prefix add that folder to PYTHONPATH).
+if(TARGET stickslip_python)
+  install(TARGETS stickslip_python LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}/python3/dist-packages")
+endif()
+
 install(FILES "${PROJECT_SOURCE_DIR}/README.md" "${PROJECT_SOURCE_DIR}/LICENSE"
         DESTINATION "${CMAKE_INSTALL_DOCDIR}")
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/docs/" DESTINATION "${CMAKE_INSTALL_DOCDIR}")

@@ -9,6 +9,7 @@ STICKSLIP_DEB_PACKAGES=(
   libcli11-dev nlohmann-json3-dev libcsv-dev
   libgtest-dev libbenchmark-dev
   pybind11-dev python3-numpy python3-pytest python3-matplotlib
+  libopenmpi-dev openmpi-bin
   xvfb xauth
 )
 

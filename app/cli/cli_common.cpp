@@ -1,7 +1,10 @@
 #include "cli_common.hpp"
 
+#include <cstdio>
 #include <iostream>
 
+#include "core/io/units.hpp"
+#include "mpi_runner.hpp"
 #include "core/presets.hpp"
 
 namespace stickslip::cli {
@@ -28,8 +31,25 @@ int buildSimParams(const SimOptions& o, SimParams& out, std::string* error) {
     return simParamsFromOptions(o, out, error) ? kOk : kBadArguments;
 }
 
+std::string exactNumber(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
+std::string simSettingsText(const SimOptions& o, const SimParams& p) {
+    std::string t = "preset " + o.preset + "\nmodel " + o.model + "\nsetup " + o.setup + "\ndt " + o.dt + "\n";
+    for (const std::string& s : o.sets) t += "set " + s + "\n";
+    for (const std::string& k : paramKeys()) {
+        double v = 0;
+        if (getParam(p, k, v)) t += k + " " + exactNumber(v) + "\n";
+    }
+    return t + "law " + toString(p.law) + "\nsetup " + toString(p.setup) + "\n";
+}
+
 void reportError(const std::string& command, const std::string& message, int code, int& exitCode) {
-    std::cerr << "stickslip-cli " << command << ": " << message << '\n';
+    // Under mpirun every rank parses the same arguments and meets the same error: rank 0 speaks.
+    if (mpiRank() == 0) std::cerr << "stickslip-cli " << command << ": " << message << '\n';
     exitCode = code;
 }
 

@@ -25,6 +25,13 @@ void addSimOptions(CLI::App* cmd, SimOptions& o);
 // the key, value and allowed range in *error (all violated fields, one per line).
 int buildSimParams(const SimOptions& o, SimParams& out, std::string* error);
 
+// The run options as given and every parameter they resolved to (%.17g), one per line: the
+// part of a checkpoint's fingerprint that the common options contribute.
+std::string simSettingsText(const SimOptions& o, const SimParams& p);
+
+// %.17g: reads back to the same double.
+std::string exactNumber(double v);
+
 // Prints "stickslip-cli <command>: <message>" on stderr, stores `code` in exitCode.
 void reportError(const std::string& command, const std::string& message, int code, int& exitCode);
 

@@ -1,5 +1,8 @@
 // `stickslip-cli sweep`: bifurcation sweep of one parameter (continuation or independent),
-// writing the Poincaré samples (--out) and a per-value summary (--summary).
+// writing the Poincaré samples (--out) and a per-value summary (--summary). Under mpirun the
+// independent mode interleaves its values over the ranks and rank 0 writes the files (the same
+// bytes as one process); a continuation is sequential and runs on rank 0 alone.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -7,7 +10,9 @@
 #include <tuple>
 #include <numbers>
 
+#include "cell_records.hpp"
 #include "cli_common.hpp"
+#include "mpi_runner.hpp"
 #include "core/analysis/sweep.hpp"
 #include "core/io/csv_table.hpp"
 #include "core/io/units.hpp"
@@ -19,7 +24,7 @@ namespace {
 
 struct SweepCliOptions {
     SimOptions sim;
-    std::string param = "A", from, to, direction = "up", mode = "continuation", out, summary;
+    std::string param = "A", from, to, direction = "up", mode = "continuation", out, summary, checkpoint;
     int steps = 50;
     long settle = 50, samples = 100, stepsPerPeriod = 0;
     int threads = 0;
@@ -32,6 +37,118 @@ std::string num(double v) {
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.10g", v);
     return buf;
+}
+
+// Every setting that changes a value's record (not --direction, which only orders the output),
+// for the checkpoint's fingerprint.
+std::string settingsText(const SweepCliOptions& o, const SimParams& p, const SweepOptions& so) {
+    auto g = [](double v) { return exactNumber(v); };
+    return std::string("sweep independent ") + kVersion + "\n" + simSettingsText(o.sim, p) + so.key + " " +
+           g(std::min(so.from, so.to)) + " " + g(std::max(so.from, so.to)) + " " + std::to_string(so.steps) +
+           "\nsettle " + std::to_string(so.settleCycles) + " samples " + std::to_string(so.sampleCycles) + " n " +
+           std::to_string(stepsPerPeriodFor(p, so.stepsPerPeriod)) + " phase " + g(so.phase_rad) + " tol " +
+           g(so.classify.relTol) + " lyapunov " + (so.lyapunov ? g(so.lyapunovD0) : "no") + "\n";
+}
+
+// Rank 0: opens the checkpoint (when asked) and lists the values still to compute; every rank
+// gets the list. Returns kOk or the error code (reported on rank 0).
+int plannedValues(const SweepCliOptions& o, const SimParams& p, const SweepOptions& so, CheckpointLog& ckpt,
+                  std::vector<SweepValueRecord>& records, std::vector<std::size_t>& todo, int& exitCode) {
+    const std::size_t count = static_cast<std::size_t>(so.steps);
+    int rc = kOk;
+    if (mpiRank() == 0) {
+        std::string error;
+        auto accept = [&](const std::string& line) {
+            SweepValueRecord r;
+            if (!parseSweepValueLine(line, count, r)) return false;
+            records.push_back(std::move(r));
+            return true;
+        };
+        const std::string form = "value INDEX HEX, INDEX < " + std::to_string(count);
+        if (!o.checkpoint.empty() && !ckpt.open(o.checkpoint, "sweep", fingerprint(settingsText(o, p, so)),
+                                                "values " + std::to_string(count), accept, form, &error)) {
+            reportError("sweep", error, kBadInput, exitCode);
+            rc = kBadInput;
+        }
+        std::vector<unsigned char> have(count, 0);
+        for (const SweepValueRecord& r : records) have[r.index] = 1;
+        for (std::size_t i = 0; i < count; ++i)
+            if (!have[i]) todo.push_back(i);
+    }
+    rc = mpiBroadcastInt(rc);
+    if (rc != kOk) {
+        exitCode = rc;
+        return rc;
+    }
+    todo = mpiBroadcastIndices(todo);
+    return kOk;
+}
+
+// Independent mode across the ranks (or on this process alone): every value's record is
+// streamed to rank 0, which logs it to the checkpoint and assembles the result. Other ranks
+// return an empty result. Returns false (exitCode set) when the checkpoint was refused.
+bool distributedIndependentSweep(const SweepCliOptions& o, const SimParams& p, const SweepOptions& so,
+                                 SweepResult& result, int& exitCode) {
+    CheckpointLog ckpt;
+    std::vector<SweepValueRecord> records;
+    std::vector<std::size_t> todo;
+    if (plannedValues(o, p, so, ckpt, records, todo, exitCode) != kOk) return false;
+    std::string ckptError;
+    mpiDistribute(
+        todo, batchSize(so.threads),
+        [&](const std::vector<std::size_t>& mine, const EmitFn& emit) {
+            independentSweepValues(p, so, mine, {}, [&](const SweepValueRecord& r) { emit(encodeSweepValue(r)); });
+        },
+        [&](const std::string& bytes) {
+            SweepValueRecord r;
+            if (!decodeSweepValue(bytes, r)) r = SweepValueRecord{};  // cannot happen between ranks of one binary
+            if (r.done && r.point.section.ok() && ckptError.empty()) ckpt.append(formatSweepValueLine(r), &ckptError);
+            records.push_back(std::move(r));
+            if (o.progress)
+                std::fprintf(stderr, "\rsweep: %5.1f %%", 100.0 * static_cast<double>(records.size()) / double(so.steps));
+        });
+    if (mpiRank() != 0) return true;
+    if (!ckptError.empty()) {
+        reportError("sweep", ckptError, kBadInput, exitCode);
+        return false;
+    }
+    result = assembleIndependentSweep(p, so, records);
+    return true;
+}
+
+// Rank 0 (or the single process): the samples CSV (--out) and the summary (--summary).
+bool writeSweepFiles(const SweepCliOptions& o, const std::string& unit, const SimParams& p, const SweepOptions& so,
+                     const SweepResult& r, int& exitCode) {
+    std::string error;
+    std::string head = std::string("# stickslip-cli ") + kVersion + " sweep\n# param = " + o.param + " [" + unit +
+                       "]\n# mode = " + toString(so.mode) + ", direction = " + toString(so.direction) +
+                       (so.concurrentBranches ? " (branches concurrent: down starts from rest at the top value)" : "") +
+                       "\n# settle = " + std::to_string(so.settleCycles) + " cycles, samples = " +
+                       std::to_string(so.sampleCycles) + ", steps per period = " +
+                       std::to_string(stepsPerPeriodFor(p, so.stepsPerPeriod)) + ", period tolerance = " +
+                       num(so.classify.relTol) + "\n# status = " + toString(r.status) +
+                       (r.message.empty() ? "" : " (" + r.message + ")") + "\n";
+    for (const std::string& k : paramKeys()) {
+        double v = 0;
+        if (k != o.param && getParam(p, k, v)) head += "# " + k + " = " + num(v) + "\n";
+    }
+    std::string csv = head + "param_value,direction,sample,slider_disp_m,rel_vel_mps,friction_ratio\n";
+    std::string sum = head + "param_value,direction,class,period,stick_fraction,max_rel_vel_mps,lyapunov_per_s\n";
+    for (const SweepPoint& pt : r.points) {
+        const std::string v = num(pt.value), dir = pt.direction > 0 ? "up" : "down";
+        for (std::size_t i = 0; i < pt.section.size(); ++i)
+            csv += v + "," + dir + "," + std::to_string(i) + "," + num(pt.section.slider_m[i]) + "," +
+                   num(pt.section.relVel_mps[i]) + "," + num(pt.section.ratio[i]) + "\n";
+        sum += v + "," + dir + "," + toString(pt.classification.motion) + "," +
+               std::to_string(pt.classification.period) + "," + num(pt.classification.stickFraction) + "," +
+               num(pt.classification.maxRelVel_mps) + "," + num(pt.lyapunovPerSecond) + "\n";
+    }
+    if (!io::writeFileAtomically(o.out, csv, &error) ||
+        (!o.summary.empty() && !io::writeFileAtomically(o.summary, sum, &error))) {
+        reportError("sweep", error, kBadInput, exitCode);
+        return false;
+    }
+    return true;
 }
 
 void runSweep(const SweepCliOptions& o, int& exitCode) {
@@ -80,37 +197,26 @@ void runSweep(const SweepCliOptions& o, int& exitCode) {
     RunControl ctl;
     if (o.progress)
         ctl.progress = [](double f) { std::fprintf(stderr, "\rsweep: %5.1f %%", 100.0 * f); };
-    const SweepResult r = bifurcationSweep(p, so, ctl);
-    if (o.progress) std::fprintf(stderr, "\n");
-
-    std::string head = std::string("# stickslip-cli ") + kVersion + " sweep\n# param = " + o.param + " [" + unit +
-                       "]\n# mode = " + toString(so.mode) + ", direction = " + toString(so.direction) +
-                       (so.concurrentBranches ? " (branches concurrent: down starts from rest at the top value)" : "") +
-                       "\n# settle = " + std::to_string(so.settleCycles) + " cycles, samples = " +
-                       std::to_string(so.sampleCycles) + ", steps per period = " +
-                       std::to_string(stepsPerPeriodFor(p, so.stepsPerPeriod)) + ", period tolerance = " +
-                       num(so.classify.relTol) + "\n# status = " + toString(r.status) +
-                       (r.message.empty() ? "" : " (" + r.message + ")") + "\n";
-    for (const std::string& k : paramKeys()) {
-        double v = 0;
-        if (k != o.param && getParam(p, k, v)) head += "# " + k + " = " + num(v) + "\n";
-    }
-    std::string csv = head + "param_value,direction,sample,slider_disp_m,rel_vel_mps,friction_ratio\n";
-    std::string sum = head + "param_value,direction,class,period,stick_fraction,max_rel_vel_mps,lyapunov_per_s\n";
-    for (const SweepPoint& pt : r.points) {
-        const std::string v = num(pt.value), dir = pt.direction > 0 ? "up" : "down";
-        for (std::size_t i = 0; i < pt.section.size(); ++i)
-            csv += v + "," + dir + "," + std::to_string(i) + "," + num(pt.section.slider_m[i]) + "," +
-                   num(pt.section.relVel_mps[i]) + "," + num(pt.section.ratio[i]) + "\n";
-        sum += v + "," + dir + "," + toString(pt.classification.motion) + "," +
-               std::to_string(pt.classification.period) + "," + num(pt.classification.stickFraction) + "," +
-               num(pt.classification.maxRelVel_mps) + "," + num(pt.lyapunovPerSecond) + "\n";
-    }
-    if (!io::writeFileAtomically(o.out, csv, &error) ||
-        (!o.summary.empty() && !io::writeFileAtomically(o.summary, sum, &error))) {
-        reportError("sweep", error, kBadInput, exitCode);
+    if (so.mode == SweepMode::Continuation && !o.checkpoint.empty()) {
+        reportError("sweep", "--checkpoint needs --mode independent (a continuation carries its state from value "
+                             "to value, so it cannot resume from a list of finished values)", kBadArguments, exitCode);
         return;
     }
+    if (so.mode == SweepMode::Continuation && mpiRank() != 0) {
+        exitCode = kOk;  // sequential by nature: rank 0 runs it alone
+        return;
+    }
+    if (so.mode == SweepMode::Continuation && mpiSize() > 1)
+        std::fprintf(stderr, "stickslip-cli sweep: a continuation is sequential; it runs on rank 0 only\n");
+    SweepResult r;
+    if (so.mode == SweepMode::Continuation) r = bifurcationSweep(p, so, ctl);
+    else if (!distributedIndependentSweep(o, p, so, r, exitCode)) return;
+    if (mpiRank() != 0) {
+        exitCode = kOk;  // rank 0 writes the output and reports
+        return;
+    }
+    if (o.progress) std::fprintf(stderr, "\n");
+    if (!writeSweepFiles(o, unit, p, so, r, exitCode)) return;
     if (r.status == RunStatus::Failed) { reportError("sweep", "sweep failed: " + r.message, kRunFailed, exitCode); return; }
     if (r.status == RunStatus::Cancelled) { reportError("sweep", "sweep cancelled", kCancelled, exitCode); return; }
     exitCode = kOk;
@@ -135,7 +241,7 @@ void addSweepCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--mode", opts->mode, "continuation (state carried over) or independent (each value from rest, "
                                           "in parallel)")
         ->capture_default_str();
-    cmd->add_option("--threads", opts->threads, "Threads for --mode independent, --concurrent-branches, and the Lyapunov companion trajectory in continuation (0 = all cores)")
+    cmd->add_option("--threads", opts->threads, "Threads for --mode independent, --concurrent-branches, and the Lyapunov companion trajectory in continuation (0 = all cores; under mpirun per rank)")
         ->capture_default_str();
     cmd->add_flag("--concurrent-branches", opts->concurrentBranches,
                   "With --direction both: start the down branch from rest at the top value (after a settle+samples "
@@ -148,6 +254,9 @@ void addSweepCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--tol", opts->tol, "Relative tolerance of the period test")->capture_default_str();
     cmd->add_flag("--no-lyapunov", opts->noLyapunov, "Skip the largest Lyapunov exponent (halves the cost)");
     cmd->add_flag("--progress", opts->progress, "Print progress on stderr");
+    cmd->add_option("--checkpoint", opts->checkpoint,
+                    "With --mode independent: log each finished value to FILE; an existing FILE from the same "
+                    "settings is resumed, one from other settings is refused");
     cmd->add_option("--out", opts->out, "Poincare samples CSV ('-' = stdout)")->required();
     cmd->add_option("--summary", opts->summary, "Per-value summary CSV");
     cmd->callback([opts, &exitCode] { runSweep(*opts, exitCode); });

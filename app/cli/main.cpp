@@ -3,10 +3,12 @@
 
 #include "commands.hpp"
 #include "man_page.hpp"
+#include "mpi_runner.hpp"
 #include "core/version.hpp"
 
 int main(int argc, char** argv) {
     using namespace stickslip::cli;
+    mpiStart(argc, argv);  // a no-op unless launched by mpirun/srun
     CLI::App app{"StickSlip Lab command line: simulate, sweep, analyse and fit friction-induced stick-slip"};
     app.set_version_flag("--version", std::string("stickslip-cli ") + stickslip::kVersion);
     app.require_subcommand(1);
@@ -23,8 +25,10 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        const int rc = app.exit(e);
+        const int rc = mpiRank() == 0 ? app.exit(e) : (e.get_exit_code() == 0 ? 0 : 1);
+        mpiStop();
         return rc == 0 ? 0 : kBadArguments;
     }
+    mpiStop();
     return exitCode;
 }

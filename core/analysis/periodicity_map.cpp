@@ -1,6 +1,7 @@
 #include "periodicity_map.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 
 #include "parallel.hpp"
@@ -39,7 +40,80 @@ ParamIssues MapOptions::validate(const SimParams& base) const {
     return out;
 }
 
-PeriodicityMap periodicityMap(const SimParams& base, const MapOptions& opt, const RunControl& ctl) {
+std::size_t mapCellCount(const MapOptions& opt) {
+    if (opt.steps1 < 1 || opt.steps2 < 1) return 0;
+    return static_cast<std::size_t>(opt.steps1) * static_cast<std::size_t>(opt.steps2);
+}
+
+namespace {
+
+// One cell from rest: a pure function of (base, opt, index) (no shared state is touched).
+MapCell computeCell(const SimParams& base, const MapOptions& opt, const std::vector<double>& values1,
+                    const std::vector<double>& values2, long n, std::size_t idx, const RunControl& quiet) {
+    MapCell cell;
+    cell.index = idx;
+    const std::size_t i1 = idx % values1.size(), i2 = idx / values1.size();
+    SimParams p = base;
+    setParam(p, opt.key1, values1[i1]);
+    setParam(p, opt.key2, values2[i2]);
+    // Steps per period stay N for every cell (dt = T/N follows f).
+    const DynamicsModel m = poincareModel(p, n);
+    DynState s = m.initialState(0.0);
+    const PoincareSection sec = poincareSectionFrom(m, s, n, opt.settleCycles, opt.sampleCycles, quiet);
+    cell.status = sec.status;
+    if (sec.status == RunStatus::Ok) {
+        const Classification c = classifyMotion(sec, classifyScales(p), opt.classify);
+        cell.motion = c.motion;
+        cell.period = c.period;
+        cell.stickFraction = c.stickFraction;
+        cell.maxRelVel_mps = c.maxRelVel_mps;
+    } else if (sec.status == RunStatus::Failed) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%s = %.6g, %s = %.6g: ", opt.key1.c_str(), values1[i1], opt.key2.c_str(),
+                      values2[i2]);
+        cell.message = buf + sec.message;
+    }
+    return cell;
+}
+
+}  // namespace
+
+std::vector<MapCell> periodicityMapCells(const SimParams& base, const MapOptions& opt,
+                                         const std::vector<std::size_t>& indices, const RunControl& ctl,
+                                         const std::function<void(const MapCell&)>& cellDone) {
+    std::vector<MapCell> out(indices.size());
+    for (std::size_t k = 0; k < indices.size(); ++k) out[k].index = indices[k];
+    if (ParamIssues issues = opt.validate(base); !issues.empty()) {
+        for (MapCell& c : out) { c.status = RunStatus::Failed; c.message = formatIssues(issues); }
+        return out;
+    }
+    const std::vector<double> values1 = sweepValues(opt.from1, opt.to1, opt.steps1);
+    const std::vector<double> values2 = sweepValues(opt.from2, opt.to2, opt.steps2);
+    const std::size_t cells = values1.size() * values2.size();
+    for (std::size_t idx : indices)
+        if (idx >= cells) {
+            for (MapCell& c : out) { c.status = RunStatus::Failed; c.message = "cell index out of range"; }
+            return out;
+        }
+    const long n = stepsPerPeriodFor(base, opt.stepsPerPeriod);
+    RunControl quiet{ctl.cancel, {}};
+    std::mutex doneLock;
+    std::size_t finished = 0;
+    parallelFor(
+        indices.size(), opt.threads,
+        [&](std::size_t k) {
+            out[k] = computeCell(base, opt, values1, values2, n, indices[k], quiet);
+            if (!ctl.progress && !cellDone) return;
+            std::lock_guard<std::mutex> lk(doneLock);
+            ++finished;
+            if (cellDone) cellDone(out[k]);
+            if (ctl.progress) ctl.progress(static_cast<double>(finished) / static_cast<double>(indices.size()));
+        },
+        [&] { return ctl.cancelled(); });
+    return out;
+}
+
+PeriodicityMap assemblePeriodicityMap(const SimParams& base, const MapOptions& opt, const std::vector<MapCell>& cells) {
     PeriodicityMap map;
     map.key1 = opt.key1;
     map.key2 = opt.key2;
@@ -50,62 +124,49 @@ PeriodicityMap periodicityMap(const SimParams& base, const MapOptions& opt, cons
     }
     map.values1 = sweepValues(opt.from1, opt.to1, opt.steps1);
     map.values2 = sweepValues(opt.from2, opt.to2, opt.steps2);
-    const std::size_t cells = map.values1.size() * map.values2.size();
-    map.motion.assign(cells, MotionClass::Irregular);
-    map.period.assign(cells, 0);
-    map.stickFraction.assign(cells, 0.0);
-    map.maxRelVel_mps.assign(cells, 0.0);
-    map.done.assign(cells, 0);
-    std::vector<std::string> failure(cells);
-    const long n = stepsPerPeriodFor(base, opt.stepsPerPeriod);
-    RunControl quiet{ctl.cancel, {}};
-    std::mutex progressLock;
-    std::size_t finished = 0;
-    parallelFor(
-        cells, opt.threads,
-        [&](std::size_t idx) {
-            const std::size_t i1 = idx % map.values1.size(), i2 = idx / map.values1.size();
-            SimParams p = base;
-            setParam(p, opt.key1, map.values1[i1]);
-            setParam(p, opt.key2, map.values2[i2]);
-            // Steps per period stay N for every cell (dt = T/N follows f).
-            const DynamicsModel m = poincareModel(p, n);
-            DynState s = m.initialState(0.0);
-            const PoincareSection sec = poincareSectionFrom(m, s, n, opt.settleCycles, opt.sampleCycles, quiet);
-            if (sec.status == RunStatus::Ok) {
-                const Classification c = classifyMotion(sec, classifyScales(p), opt.classify);
-                map.motion[idx] = c.motion;
-                map.period[idx] = c.period;
-                map.stickFraction[idx] = c.stickFraction;
-                map.maxRelVel_mps[idx] = c.maxRelVel_mps;
-                map.done[idx] = 1;
-            } else if (sec.status == RunStatus::Failed) {
-                char buf[160];
-                std::snprintf(buf, sizeof buf, "%s = %.6g, %s = %.6g: ", opt.key1.c_str(), map.values1[i1],
-                              opt.key2.c_str(), map.values2[i2]);
-                failure[idx] = buf + sec.message;
-            }
-            if (ctl.progress) {
-                std::lock_guard<std::mutex> lk(progressLock);
-                ++finished;
-                ctl.progress(static_cast<double>(finished) / static_cast<double>(cells));
-            }
-        },
-        [&] { return ctl.cancelled(); });
-    for (std::size_t i = 0; i < cells; ++i) {
+    const std::size_t n = map.values1.size() * map.values2.size();
+    map.motion.assign(n, MotionClass::Irregular);
+    map.period.assign(n, 0);
+    map.stickFraction.assign(n, 0.0);
+    map.maxRelVel_mps.assign(n, 0.0);
+    map.done.assign(n, 0);
+    std::vector<std::string> failure(n);
+    for (const MapCell& c : cells) {
+        if (c.index >= n) continue;
+        const std::size_t i = c.index;
+        map.done[i] = 0;
+        failure[i].clear();
+        if (c.status == RunStatus::Ok) {
+            map.motion[i] = c.motion;
+            map.period[i] = c.period;
+            map.stickFraction[i] = c.stickFraction;
+            map.maxRelVel_mps[i] = c.maxRelVel_mps;
+            map.done[i] = 1;
+        } else if (c.status == RunStatus::Failed) {
+            failure[i] = c.message;
+        }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
         if (!failure[i].empty()) {
             map.status = RunStatus::Failed;
             map.message = failure[i];
             return map;
         }
     }
-    for (std::size_t i = 0; i < cells; ++i)
+    for (std::size_t i = 0; i < n; ++i)
         if (!map.done[i]) {
             map.status = RunStatus::Cancelled;
             map.message = "cancelled";
             break;
         }
     return map;
+}
+
+PeriodicityMap periodicityMap(const SimParams& base, const MapOptions& opt, const RunControl& ctl) {
+    if (ParamIssues issues = opt.validate(base); !issues.empty()) return assemblePeriodicityMap(base, opt, {});
+    std::vector<std::size_t> all(mapCellCount(opt));
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    return assemblePeriodicityMap(base, opt, periodicityMapCells(base, opt, all, ctl));
 }
 
 }  // namespace stickslip

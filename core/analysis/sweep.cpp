@@ -182,12 +182,6 @@ SweepResult bifurcationSweep(const SimParams& base, const SweepOptions& opt, con
     std::vector<double> down(up.rbegin(), up.rend());
     RunControl quiet{ctl.cancel, {}};
 
-    auto paramsFor = [&](double v) {
-        SimParams p = base;
-        setParam(p, opt.key, v);
-        return p;
-    };
-
     if (opt.mode == SweepMode::Continuation) {
         // Progress over every value of every branch, possibly from two threads.
         const std::size_t total = (opt.direction == SweepDirection::Both ? 2 : 1) * up.size();
@@ -246,19 +240,44 @@ SweepResult bifurcationSweep(const SimParams& base, const SweepOptions& opt, con
         return res;
     }
 
-    // Independent: every value from rest; each writes only its own slot.
-    std::vector<SweepPoint> pts(up.size());
-    std::vector<unsigned char> done(up.size(), 0);
-    std::mutex progressLock;
+    // Independent: every value from rest, a pure function of its index.
+    std::vector<std::size_t> all(up.size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    return assembleIndependentSweep(base, opt, independentSweepValues(base, opt, all, ctl));
+}
+
+std::vector<SweepValueRecord> independentSweepValues(const SimParams& base, const SweepOptions& opt,
+                                                     const std::vector<std::size_t>& indices, const RunControl& ctl,
+                                                     const std::function<void(const SweepValueRecord&)>& valueDone) {
+    std::vector<SweepValueRecord> out(indices.size());
+    for (std::size_t k = 0; k < indices.size(); ++k) out[k].index = indices[k];
+    const std::vector<double> up = sweepValues(std::min(opt.from, opt.to), std::max(opt.from, opt.to), opt.steps);
+    std::string problem;
+    if (ParamIssues issues = opt.validate(base); !issues.empty()) problem = formatIssues(issues);
+    for (std::size_t idx : indices)
+        if (problem.empty() && idx >= up.size()) problem = "value index out of range";
+    if (!problem.empty()) {
+        for (SweepValueRecord& r : out) {
+            r.done = true;
+            r.point.section.status = RunStatus::Failed;
+            r.point.section.message = problem;
+        }
+        return out;
+    }
+    const long n = stepsPerPeriodFor(base, opt.stepsPerPeriod);
+    RunControl quiet{ctl.cancel, {}};
+    std::mutex doneLock;
     std::size_t finished = 0;
     parallelFor(
-        up.size(), opt.threads,
-        [&](std::size_t i) {
-            const SimParams p = paramsFor(up[i]);
+        indices.size(), opt.threads,
+        [&](std::size_t k) {
+            const double v = up[indices[k]];
+            SimParams p = base;
+            setParam(p, opt.key, v);
             const DynamicsModel m = poincareModel(p, n);
             DynState s = m.initialState(0.0);
-            SweepPoint& pt = pts[i];
-            pt.value = up[i];
+            SweepPoint& pt = out[k].point;
+            pt.value = v;
             pt.direction = +1;
             StepReport rep = advanceQuiet(m, s, detail::phaseOffsetSteps(opt.phase_rad, n), quiet);
             if (rep.status != RunStatus::Ok) {
@@ -267,30 +286,47 @@ SweepResult bifurcationSweep(const SimParams& base, const SweepOptions& opt, con
             } else {
                 runValue(p, opt, n, s, m, pt, quiet);
             }
-            done[i] = 1;
-            if (ctl.progress) {
-                std::lock_guard<std::mutex> lk(progressLock);
-                ++finished;
-                ctl.progress(static_cast<double>(finished) / static_cast<double>(up.size()));
-            }
+            out[k].done = true;
+            if (!ctl.progress && !valueDone) return;
+            std::lock_guard<std::mutex> lk(doneLock);
+            ++finished;
+            if (valueDone) valueDone(out[k]);
+            if (ctl.progress) ctl.progress(static_cast<double>(finished) / static_cast<double>(indices.size()));
         },
         [&] { return ctl.cancelled(); });
+    return out;
+}
+
+SweepResult assembleIndependentSweep(const SimParams& base, const SweepOptions& opt,
+                                     const std::vector<SweepValueRecord>& records) {
+    SweepResult res;
+    res.key = opt.key;
+    if (ParamIssues issues = opt.validate(base); !issues.empty()) {
+        res.status = RunStatus::Failed;
+        res.message = formatIssues(issues);
+        return res;
+    }
+    const std::size_t count = static_cast<std::size_t>(opt.steps);
+    std::vector<const SweepValueRecord*> slot(count, nullptr);
+    for (const SweepValueRecord& r : records)
+        if (r.index < count) slot[r.index] = r.done ? &r : nullptr;
     // Report the first failure by index (deterministic), keep every finished value.
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-        if (!done[i]) {
+    for (std::size_t i = 0; i < count; ++i) {
+        if (!slot[i]) {
             if (res.status == RunStatus::Ok) { res.status = RunStatus::Cancelled; res.message = "cancelled"; }
             continue;
         }
-        if (pts[i].section.status != RunStatus::Ok) {
-            if (pts[i].section.status == RunStatus::Cancelled) {
+        const SweepPoint& pt = slot[i]->point;
+        if (pt.section.status != RunStatus::Ok) {
+            if (pt.section.status == RunStatus::Cancelled) {
                 if (res.status == RunStatus::Ok) { res.status = RunStatus::Cancelled; res.message = "cancelled"; }
             } else if (res.status != RunStatus::Failed) {
                 res.status = RunStatus::Failed;
-                res.message = valueMessage(opt.key, pts[i].value, pts[i].section.message);
+                res.message = valueMessage(opt.key, pt.value, pt.section.message);
             }
             continue;
         }
-        res.points.push_back(pts[i]);
+        res.points.push_back(pt);
     }
     if (res.status == RunStatus::Ok && opt.direction != SweepDirection::Up) {
         // From rest, the down branch is the same computation: listed in descending order.

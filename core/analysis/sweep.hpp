@@ -21,6 +21,8 @@
 // Cancel: polled every 4096 steps; the result then holds the values finished so far.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -78,5 +80,29 @@ struct SweepResult {
 std::vector<double> sweepValues(double from, double to, int steps);
 
 SweepResult bifurcationSweep(const SimParams& base, const SweepOptions& opt, const RunControl& ctl = {});
+
+// Mode independent, one value on its own: a pure function of (base, opt, index), so values can
+// be computed in any subsets (MPI ranks) and assembled into exactly the one-call result.
+// index counts the ascending values (sweepValues(min(from,to), max(from,to), steps)).
+struct SweepValueRecord {
+    std::size_t index = 0;
+    bool done = false;   // the value ran (point.section.status tells how it ended)
+    SweepPoint point;    // direction +1
+};
+
+// Computes the values `indices` (each < opt.steps) from rest on opt.threads threads; aligned
+// with `indices`, values never started (cancel) have done = false. valueDone, when given, is
+// called once per value that ran, under a lock. opt must validate (every record is returned
+// done with a Failed section otherwise).
+std::vector<SweepValueRecord> independentSweepValues(const SimParams& base, const SweepOptions& opt,
+                                                     const std::vector<std::size_t>& indices,
+                                                     const RunControl& ctl = {},
+                                                     const std::function<void(const SweepValueRecord&)>& valueDone = {});
+
+// The independent-mode SweepResult from records (any order and subset; a later record of an
+// index replaces an earlier one): bifurcationSweep(b, o) with o.mode independent equals
+// assembleIndependentSweep(b, o, independentSweepValues(b, o, all indices)) bit for bit.
+SweepResult assembleIndependentSweep(const SimParams& base, const SweepOptions& opt,
+                                     const std::vector<SweepValueRecord>& records);
 
 }  // namespace stickslip
