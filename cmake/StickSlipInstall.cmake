@@ -23,7 +23,7 @@ install(FILES "${PROJECT_BINARY_DIR}/man/stickslip-cli.1" DESTINATION "${CMAKE_I
 # The Python module, where Debian's python3 looks for packages under a prefix
 # (P/lib/python3/dist-packages; for another prefix add that folder to PYTHONPATH).
 if(TARGET stickslip_python)
-  install(TARGETS stickslip_python LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}/python3/dist-packages")
+  install(TARGETS stickslip_python LIBRARY DESTINATION "lib/python3/dist-packages")
 endif()
 
 install(FILES "${PROJECT_SOURCE_DIR}/README.md" "${PROJECT_SOURCE_DIR}/LICENSE"

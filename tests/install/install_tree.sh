@@ -42,5 +42,15 @@ if [ -x "$prefix/bin/stickslip" ] || [ -e "$build/bin/stickslip" ]; then
   "$prefix/bin/stickslip" --version | grep -q 'stickslip' || fail "stickslip --version"
   timeout 120 "$prefix/bin/stickslip" --preset fig20 --screenshot shot.png || fail "installed app did not start"
   [ -s shot.png ] || fail "installed app saved no screenshot"
+  echo "install_tree: the installed app started from the prefix and saved a screenshot"
+fi
+if compgen -G "$build/python/stickslip*.so" >/dev/null; then
+  mod=$(compgen -G "$prefix/lib/python3/dist-packages/stickslip*.so" | head -1)
+  [ -n "$mod" ] || fail "the Python module is built but not installed"
+  PYTHONPATH="$prefix/lib/python3/dist-packages" /usr/bin/python3 -c '
+import stickslip
+r = stickslip.simulate(preset="fig20", cycles=2)
+assert len(r["time_s"]) > 100, len(r["time_s"])
+print("install_tree: python module from the prefix:", stickslip.__file__)' || fail "installed Python module"
 fi
 echo "install_tree: OK"
