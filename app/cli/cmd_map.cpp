@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "cell_records.hpp"
+#include "checkpoint_plan.hpp"
 #include "cli_common.hpp"
 #include "mpi_runner.hpp"
 #include "core/analysis/periodicity_map.hpp"
@@ -45,40 +46,6 @@ std::string settingsText(const MapCliOptions& o, const SimParams& p, const MapOp
     t += "settle " + std::to_string(mo.settleCycles) + " samples " + std::to_string(mo.sampleCycles) + " n " +
          std::to_string(stepsPerPeriodFor(p, mo.stepsPerPeriod)) + " tol " + g(mo.classify.relTol) + "\n";
     return t;
-}
-
-// Rank 0: opens the checkpoint (when asked) and lists the cells still to compute; every rank
-// gets the list. Returns kOk or the error code (reported on rank 0).
-int plannedCells(const MapCliOptions& o, const SimParams& p, const MapOptions& mo, CheckpointLog& ckpt,
-                 std::vector<MapCell>& records, std::vector<std::size_t>& todo, int& exitCode) {
-    const std::size_t cells = mapCellCount(mo);
-    int rc = kOk;
-    if (mpiRank() == 0) {
-        std::string error;
-        auto accept = [&](const std::string& line) {
-            MapCell c;
-            if (!parseMapCellLine(line, cells, c)) return false;
-            records.push_back(c);
-            return true;
-        };
-        const std::string form = "cell INDEX MOTION PERIOD STICK_FRACTION MAX_REL_VEL, INDEX < " + std::to_string(cells);
-        if (!o.checkpoint.empty() && !ckpt.open(o.checkpoint, "map", fingerprint(settingsText(o, p, mo)),
-                                                "cells " + std::to_string(cells), accept, form, &error)) {
-            reportError("map", error, kBadInput, exitCode);
-            rc = kBadInput;
-        }
-        std::vector<unsigned char> have(cells, 0);
-        for (const MapCell& c : records) have[c.index] = 1;
-        for (std::size_t i = 0; i < cells; ++i)
-            if (!have[i]) todo.push_back(i);
-    }
-    rc = mpiBroadcastInt(rc);
-    if (rc != kOk) {
-        exitCode = rc;
-        return rc;
-    }
-    todo = mpiBroadcastIndices(todo);
-    return kOk;
 }
 
 // The map CSV exactly as a one-process run writes it (cells row by row, done ones only).
@@ -137,7 +104,10 @@ void runMap(const MapCliOptions& o, int& exitCode) {
     CheckpointLog ckpt;
     std::vector<MapCell> records;
     std::vector<std::size_t> todo;
-    if (plannedCells(o, p, mo, ckpt, records, todo, exitCode) != kOk) return;
+    const std::size_t cells = mapCellCount(mo);
+    const CheckpointSpec spec{o.checkpoint, "map", settingsText(o, p, mo), "cells " + std::to_string(cells),
+                              "cell INDEX MOTION PERIOD STICK_FRACTION MAX_REL_VEL, INDEX < " + std::to_string(cells)};
+    if (planFromCheckpoint<MapCell>(spec, cells, parseMapCellLine, ckpt, records, todo, exitCode) != kOk) return;
     const std::size_t total = mapCellCount(mo);
     std::string ckptError;
     mpiDistribute(

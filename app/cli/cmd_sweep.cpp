@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "cell_records.hpp"
+#include "checkpoint_plan.hpp"
 #include "cli_common.hpp"
 #include "mpi_runner.hpp"
 #include "core/analysis/sweep.hpp"
@@ -50,40 +51,6 @@ std::string settingsText(const SweepCliOptions& o, const SimParams& p, const Swe
            g(so.classify.relTol) + " lyapunov " + (so.lyapunov ? g(so.lyapunovD0) : "no") + "\n";
 }
 
-// Rank 0: opens the checkpoint (when asked) and lists the values still to compute; every rank
-// gets the list. Returns kOk or the error code (reported on rank 0).
-int plannedValues(const SweepCliOptions& o, const SimParams& p, const SweepOptions& so, CheckpointLog& ckpt,
-                  std::vector<SweepValueRecord>& records, std::vector<std::size_t>& todo, int& exitCode) {
-    const std::size_t count = static_cast<std::size_t>(so.steps);
-    int rc = kOk;
-    if (mpiRank() == 0) {
-        std::string error;
-        auto accept = [&](const std::string& line) {
-            SweepValueRecord r;
-            if (!parseSweepValueLine(line, count, r)) return false;
-            records.push_back(std::move(r));
-            return true;
-        };
-        const std::string form = "value INDEX HEX, INDEX < " + std::to_string(count);
-        if (!o.checkpoint.empty() && !ckpt.open(o.checkpoint, "sweep", fingerprint(settingsText(o, p, so)),
-                                                "values " + std::to_string(count), accept, form, &error)) {
-            reportError("sweep", error, kBadInput, exitCode);
-            rc = kBadInput;
-        }
-        std::vector<unsigned char> have(count, 0);
-        for (const SweepValueRecord& r : records) have[r.index] = 1;
-        for (std::size_t i = 0; i < count; ++i)
-            if (!have[i]) todo.push_back(i);
-    }
-    rc = mpiBroadcastInt(rc);
-    if (rc != kOk) {
-        exitCode = rc;
-        return rc;
-    }
-    todo = mpiBroadcastIndices(todo);
-    return kOk;
-}
-
 // Independent mode across the ranks (or on this process alone): every value's record is
 // streamed to rank 0, which logs it to the checkpoint and assembles the result. Other ranks
 // return an empty result. Returns false (exitCode set) when the checkpoint was refused.
@@ -92,7 +59,11 @@ bool distributedIndependentSweep(const SweepCliOptions& o, const SimParams& p, c
     CheckpointLog ckpt;
     std::vector<SweepValueRecord> records;
     std::vector<std::size_t> todo;
-    if (plannedValues(o, p, so, ckpt, records, todo, exitCode) != kOk) return false;
+    const std::size_t count = static_cast<std::size_t>(so.steps);
+    const CheckpointSpec spec{o.checkpoint, "sweep", settingsText(o, p, so), "values " + std::to_string(count),
+                              "value INDEX HEX, INDEX < " + std::to_string(count)};
+    if (planFromCheckpoint<SweepValueRecord>(spec, count, parseSweepValueLine, ckpt, records, todo, exitCode) != kOk)
+        return false;
     std::string ckptError;
     mpiDistribute(
         todo, batchSize(so.threads),
