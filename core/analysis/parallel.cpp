@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -35,6 +36,24 @@ void parallelFor(std::size_t n, int threads, const std::function<void(std::size_
     for (int k = 1; k < t; ++k) pool.emplace_back(worker);
     worker();
     for (auto& th : pool) th.join();
+}
+
+void parallelForReporting(std::size_t n, int threads, const std::function<void(std::size_t)>& body,
+                          const std::function<void(std::size_t)>& done, const std::function<void(double)>& progress,
+                          const std::function<bool()>& stop) {
+    std::mutex lock;
+    std::size_t finished = 0;
+    parallelFor(
+        n, threads,
+        [&](std::size_t i) {
+            body(i);
+            if (!done && !progress) return;
+            std::lock_guard<std::mutex> lk(lock);
+            ++finished;
+            if (done) done(i);
+            if (progress) progress(static_cast<double>(finished) / static_cast<double>(n));
+        },
+        stop);
 }
 
 }  // namespace stickslip

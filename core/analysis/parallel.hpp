@@ -17,4 +17,11 @@ int workerCount(int requested, std::size_t n);
 void parallelFor(std::size_t n, int threads, const std::function<void(std::size_t)>& body,
                  const std::function<bool()>& stop = {});
 
+// parallelFor that reports each finished index: after body(i), done(i) and then
+// progress(finished / n) run under one lock (either may be empty), so callers need no locking
+// of their own to stream results (e.g. to rank 0 of an MPI job or a checkpoint).
+void parallelForReporting(std::size_t n, int threads, const std::function<void(std::size_t)>& body,
+                          const std::function<void(std::size_t)>& done, const std::function<void(double)>& progress,
+                          const std::function<bool()>& stop = {});
+
 }  // namespace stickslip

@@ -97,19 +97,11 @@ std::vector<MapCell> periodicityMapCells(const SimParams& base, const MapOptions
         }
     const long n = stepsPerPeriodFor(base, opt.stepsPerPeriod);
     RunControl quiet{ctl.cancel, {}};
-    std::mutex doneLock;
-    std::size_t finished = 0;
-    parallelFor(
+    parallelForReporting(
         indices.size(), opt.threads,
-        [&](std::size_t k) {
-            out[k] = computeCell(base, opt, values1, values2, n, indices[k], quiet);
-            if (!ctl.progress && !cellDone) return;
-            std::lock_guard<std::mutex> lk(doneLock);
-            ++finished;
-            if (cellDone) cellDone(out[k]);
-            if (ctl.progress) ctl.progress(static_cast<double>(finished) / static_cast<double>(indices.size()));
-        },
-        [&] { return ctl.cancelled(); });
+        [&](std::size_t k) { out[k] = computeCell(base, opt, values1, values2, n, indices[k], quiet); },
+        cellDone ? std::function<void(std::size_t)>([&](std::size_t k) { cellDone(out[k]); }) : nullptr,
+        ctl.progress, [&] { return ctl.cancelled(); });
     return out;
 }
 

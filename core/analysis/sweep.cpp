@@ -266,9 +266,7 @@ std::vector<SweepValueRecord> independentSweepValues(const SimParams& base, cons
     }
     const long n = stepsPerPeriodFor(base, opt.stepsPerPeriod);
     RunControl quiet{ctl.cancel, {}};
-    std::mutex doneLock;
-    std::size_t finished = 0;
-    parallelFor(
+    parallelForReporting(
         indices.size(), opt.threads,
         [&](std::size_t k) {
             const double v = up[indices[k]];
@@ -287,13 +285,9 @@ std::vector<SweepValueRecord> independentSweepValues(const SimParams& base, cons
                 runValue(p, opt, n, s, m, pt, quiet);
             }
             out[k].done = true;
-            if (!ctl.progress && !valueDone) return;
-            std::lock_guard<std::mutex> lk(doneLock);
-            ++finished;
-            if (valueDone) valueDone(out[k]);
-            if (ctl.progress) ctl.progress(static_cast<double>(finished) / static_cast<double>(indices.size()));
         },
-        [&] { return ctl.cancelled(); });
+        valueDone ? std::function<void(std::size_t)>([&](std::size_t k) { valueDone(out[k]); }) : nullptr,
+        ctl.progress, [&] { return ctl.cancelled(); });
     return out;
 }
 

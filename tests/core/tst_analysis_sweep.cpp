@@ -77,6 +77,26 @@ private slots:
         parallelFor(50, 2, [&](std::size_t) { ++ran; }, [] { return true; });
         QCOMPARE(ran.load(), 0);
     }
+    void parallelForReportingReportsEachIndexOnceInOrderOfProgress() {
+        for (int threads : {1, 2, 4}) {
+            std::vector<int> body(61, 0), done(61, 0);
+            std::vector<double> fractions;  // done/progress run under one lock: plain containers are safe
+            parallelForReporting(
+                body.size(), threads, [&](std::size_t i) { body[i] += 1; },
+                [&](std::size_t i) {
+                    QCOMPARE(body[i], 1);  // reported after its body ran
+                    done[i] += 1;
+                },
+                [&](double f) { fractions.push_back(f); });
+            for (std::size_t i = 0; i < body.size(); ++i) QVERIFY(body[i] == 1 && done[i] == 1);
+            QCOMPARE(fractions.size(), body.size());
+            for (std::size_t k = 0; k < fractions.size(); ++k)
+                QCOMPARE(fractions[k], static_cast<double>(k + 1) / static_cast<double>(body.size()));
+        }
+        std::atomic<int> ran{0};  // stop is honoured; empty reporters are allowed
+        parallelForReporting(20, 2, [&](std::size_t) { ++ran; }, nullptr, nullptr, [] { return true; });
+        QCOMPARE(ran.load(), 0);
+    }
     void independentSweepIsBitIdenticalForAnyThreadCount() {
         SweepOptions o = small();
         o.mode = SweepMode::Independent;
