@@ -30,7 +30,7 @@ struct SweepCliOptions {
     long settle = 50, samples = 100, stepsPerPeriod = 0;
     int threads = 0;
     double phase = 0.0, tol = 1e-4;
-    bool noLyapunov = false, progress = false, concurrentBranches = false;
+    bool noLyapunov = false, progress = false, concurrentBranches = false, independent = false;
 };
 
 std::string num(double v) {
@@ -147,7 +147,7 @@ void runSweep(const SweepCliOptions& o, int& exitCode) {
         reportError("sweep", "--direction '" + o.direction + "' is not one of: up, down, both", kBadArguments, exitCode);
         return;
     }
-    if (!parseSweepMode(o.mode, so.mode)) {
+    if (!parseSweepMode(o.independent ? "independent" : o.mode, so.mode)) {
         reportError("sweep", "--mode '" + o.mode + "' is not one of: continuation, independent", kBadArguments,
                     exitCode);
         return;
@@ -209,9 +209,10 @@ void addSweepCommand(CLI::App& root, int& exitCode) {
         ->capture_default_str();
     cmd->add_option("--settle", opts->settle, "Cycles discarded per value")->capture_default_str();
     cmd->add_option("--samples", opts->samples, "Poincare samples (cycles) kept per value")->capture_default_str();
-    cmd->add_option("--mode", opts->mode, "continuation (state carried over) or independent (each value from rest, "
-                                          "in parallel)")
-        ->capture_default_str();
+    auto* mode = cmd->add_option("--mode", opts->mode, "continuation (state carried over) or independent (each value "
+                                                       "from rest, in parallel)")
+                     ->capture_default_str();
+    cmd->add_flag("--independent", opts->independent, "Short for --mode independent")->excludes(mode);
     cmd->add_option("--threads", opts->threads, "Threads for --mode independent, --concurrent-branches, and the Lyapunov companion trajectory in continuation (0 = all cores; under mpirun per rank)")
         ->capture_default_str();
     cmd->add_flag("--concurrent-branches", opts->concurrentBranches,

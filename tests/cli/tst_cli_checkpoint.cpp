@@ -152,6 +152,14 @@ private slots:
                                        at("c.ckpt")});
         QCOMPARE(cont.exitCode, 2);
         QVERIFY(cont.err.contains("--checkpoint needs --mode independent"));
+        // --independent is short for --mode independent (and excludes --mode).
+        QStringList shortArgs = args;
+        shortArgs.removeAt(shortArgs.indexOf("--mode") + 1);
+        shortArgs.replace(shortArgs.indexOf("--mode"), "--independent");
+        const CliResult shorter = runCli(shortArgs + QStringList{"--out", at("s5.csv"), "--summary", at("s5s.csv")});
+        QVERIFY2(shorter.exitCode == 0, shorter.err.constData());
+        QCOMPARE(readAll(at("s5.csv")), readAll(at("s.csv")));
+        QCOMPARE(runCli(args + QStringList{"--independent", "--out", at("s6.csv")}).exitCode, 2);
     }
 };
 
