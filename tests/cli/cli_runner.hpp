@@ -4,6 +4,7 @@
 
 #include <QByteArray>
 #include <QProcess>
+#include <QProcessEnvironment>
 #include <QStringList>
 
 namespace stickslip::testing {
@@ -13,9 +14,12 @@ struct CliResult {
     QByteArray out, err;
 };
 
-inline CliResult runCli(const QStringList& args, int timeout_ms = 120000) {
+// Runs `program args` (with `env` when given) and collects exit code and output.
+inline CliResult runProcess(const QString& program, const QStringList& args, int timeout_ms = 120000,
+                            const QProcessEnvironment& env = QProcessEnvironment()) {
     QProcess p;
-    p.start(QStringLiteral(STICKSLIP_CLI), args);
+    if (!env.isEmpty()) p.setProcessEnvironment(env);
+    p.start(program, args);
     CliResult r;
     if (!p.waitForFinished(timeout_ms)) {
         p.kill();
@@ -27,6 +31,10 @@ inline CliResult runCli(const QStringList& args, int timeout_ms = 120000) {
     r.out = p.readAllStandardOutput();
     r.err = p.readAllStandardError();
     return r;
+}
+
+inline CliResult runCli(const QStringList& args, int timeout_ms = 120000) {
+    return runProcess(QStringLiteral(STICKSLIP_CLI), args, timeout_ms);
 }
 
 }  // namespace stickslip::testing

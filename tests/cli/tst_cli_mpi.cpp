@@ -10,11 +10,11 @@
 
 using stickslip::testing::CliResult;
 using stickslip::testing::runCli;
+using stickslip::testing::runProcess;
 
 namespace {
 
 CliResult runMpi(int ranks, const QStringList& cliArgs, int timeout_ms = 120000) {
-    QProcess p;
     QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
     // Tests may run as root (containers, CI); OpenMPI refuses that unless told.
     env.insert("OMPI_ALLOW_RUN_AS_ROOT", "1");
@@ -24,20 +24,8 @@ CliResult runMpi(int ranks, const QStringList& cliArgs, int timeout_ms = 120000)
     // LeakSanitizer would report as leaks of ours; address and UB checks stay on. (The core and
     // checkpoint code are leak-checked by the tests that run without MPI.)
     if (env.contains("ASAN_OPTIONS")) env.insert("ASAN_OPTIONS", env.value("ASAN_OPTIONS") + ":detect_leaks=0");
-    p.setProcessEnvironment(env);
-    QStringList args{"--oversubscribe", "-np", QString::number(ranks), QStringLiteral(STICKSLIP_CLI)};
-    p.start(QStringLiteral(STICKSLIP_MPIEXEC), args + cliArgs);
-    CliResult r;
-    if (!p.waitForFinished(timeout_ms)) {
-        p.kill();
-        p.waitForFinished();
-        r.err = "timed out";
-        return r;
-    }
-    r.exitCode = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
-    r.out = p.readAllStandardOutput();
-    r.err = p.readAllStandardError();
-    return r;
+    const QStringList args{"--oversubscribe", "-np", QString::number(ranks), QStringLiteral(STICKSLIP_CLI)};
+    return runProcess(QStringLiteral(STICKSLIP_MPIEXEC), args + cliArgs, timeout_ms, env);
 }
 
 QByteArray readAll(const QString& path) {
