@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "../version.hpp"
+#include "atomic_file.hpp"
 #include "units.hpp"
 
 namespace stickslip::io {
@@ -27,9 +28,11 @@ std::vector<std::vector<double>> runCsvValues(const RunResult& r) {
     return cols;
 }
 
-std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector<std::string>& extraComments) {
+namespace {
+
+// The '#' lines and the header of a run file.
+std::string runCsvHead(const SimParams& p, const RunResult& r, const std::vector<std::string>& extraComments) {
     std::string s;
-    char buf[512];
     s += std::string("# StickSlip Lab ") + kVersion + " run\n";
     s += std::string("# version = ") + kVersion + "\n";
     s += std::string("# model = ") + toString(p.law) + "\n";
@@ -58,18 +61,45 @@ std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector
     const auto& cols = runCsvColumns();
     for (size_t j = 0; j < cols.size(); ++j) s += (j ? "," : "") + cols[j];
     s += '\n';
+    return s;
+}
+
+void appendRow(std::string& s, const Sample& x) {
+    char buf[512];
+    const int n = std::snprintf(buf, sizeof buf, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d\n", x.t_s,
+                                x.stage_m, x.slider_m, x.sliderVel_mps, x.relVel_mps, x.force_N, x.ratio, x.alpha,
+                                x.stuck ? 1 : 0);
+    s.append(buf, static_cast<size_t>(n));
+}
+
+}  // namespace
+
+std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector<std::string>& extraComments) {
+    std::string s = runCsvHead(p, r, extraComments);
     s.reserve(s.size() + r.samples.size() * 150);
-    for (const Sample& x : r.samples) {
-        std::snprintf(buf, sizeof buf, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d\n", x.t_s, x.stage_m,
-                      x.slider_m, x.sliderVel_mps, x.relVel_mps, x.force_N, x.ratio, x.alpha, x.stuck ? 1 : 0);
-        s += buf;
-    }
+    for (const Sample& x : r.samples) appendRow(s, x);
     return s;
 }
 
 bool writeRunCsv(const std::string& path, const SimParams& p, const RunResult& r, std::string* error,
                  const std::vector<std::string>& extraComments) {
-    return writeFileAtomically(path, runCsvText(p, r, extraComments), error);
+    // Streamed in blocks: the text of a long run (about 130 bytes per sample) is never held
+    // whole in memory next to its samples.
+    constexpr size_t kBlock = 1 << 20;
+    AtomicFileWriter f(path);
+    bool ok = f.open() && f.write(runCsvHead(p, r, extraComments));
+    std::string block;
+    block.reserve(kBlock + 512);
+    for (size_t i = 0; ok && i < r.samples.size(); ++i) {
+        appendRow(block, r.samples[i]);
+        if (block.size() >= kBlock || i + 1 == r.samples.size()) {
+            ok = f.write(block);
+            block.clear();
+        }
+    }
+    if (ok && f.commit()) return true;
+    if (error) *error = f.error();
+    return false;
 }
 
 bool slipHistoryFromTable(const CsvTable& t, SlipHistory& out, CsvError& err) {
