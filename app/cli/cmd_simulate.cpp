@@ -2,6 +2,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cancel.hpp"
 #include "cli_common.hpp"
 #include "core/integrate/simulate.hpp"
 #include "core/io/run_csv.hpp"
@@ -44,19 +45,22 @@ void runSimulate(const SimulateOptions& o, int& exitCode) {
         comments.push_back("input = " + o.input);
     }
 
-    const RunResult r = simulate(p, RunControl{}, o.input.empty() ? nullptr : &history);
-    // A failed run still writes what it computed (its status and message are in the '#'
-    // lines) so the lead-up to the failure can be inspected; the exit code says it failed.
+    RunControl ctl;
+    ctl.cancel = &cancelFlag();
+    const RunResult r = simulate(p, ctl, o.input.empty() ? nullptr : &history);
+    // Cancelled: nothing is written (a partial run under the output name would pass for a
+    // whole one). A failed run still writes what it computed (its status and message are in
+    // the '#' lines) so the lead-up to the failure can be inspected; the exit code says it failed.
+    if (r.status == RunStatus::Cancelled || cancelRequested()) {
+        reportError("simulate", "cancelled; no output written", kCancelled, exitCode);
+        return;
+    }
     if (!io::writeRunCsv(o.out, p, r, &error, comments)) {
         reportError("simulate", error, kBadInput, exitCode);
         return;
     }
     if (r.status == RunStatus::Failed) {
         reportError("simulate", "run failed: " + r.message, kRunFailed, exitCode);
-        return;
-    }
-    if (r.status == RunStatus::Cancelled) {
-        reportError("simulate", "run cancelled: " + r.message, kCancelled, exitCode);
         return;
     }
     if (o.out != "-")
@@ -80,7 +84,7 @@ void addSimulateCommand(CLI::App& root, int& exitCode) {
     cmd->footer(
         "Exit codes: 0 ok, 2 bad arguments or parameters, 3 unreadable or malformed input (file:line:column) or "
         "an output file that cannot be written, "
-        "4 run failed numerically.");
+        "4 run failed numerically, 5 cancelled (Ctrl-C or SIGTERM; no output written).");
     cmd->callback([&exitCode, o] { runSimulate(*o, exitCode); });
 }
 
