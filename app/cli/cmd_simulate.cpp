@@ -47,7 +47,23 @@ void runSimulate(const SimulateOptions& o, int& exitCode) {
 
     RunControl ctl;
     ctl.cancel = &cancelFlag();
+    // A file is written while the run computes (its rows never all in memory); standard
+    // output gets the whole text at the end, since the '#' lines with the status come first.
+    std::unique_ptr<io::RunCsvStream> stream;
+    long streamed = 0;
+    if (o.out != "-") {
+        stream = std::make_unique<io::RunCsvStream>(o.out);
+        if (!stream->open(&error)) {
+            reportError("simulate", error, kBadInput, exitCode);
+            return;
+        }
+        ctl.onSample = [&stream, &streamed](const Sample& x) {
+            stream->add(x);
+            ++streamed;
+        };
+    }
     const RunResult r = simulate(p, ctl, o.input.empty() ? nullptr : &history);
+    const long samples = stream ? streamed : static_cast<long>(r.samples.size());
     // Cancelled: nothing is written (a partial run under the output name would pass for a
     // whole one). A failed run still writes what it computed (its status and message are in
     // the '#' lines) so the lead-up to the failure can be inspected; the exit code says it failed.
@@ -55,7 +71,7 @@ void runSimulate(const SimulateOptions& o, int& exitCode) {
         reportError("simulate", "cancelled; no output written", kCancelled, exitCode);
         return;
     }
-    if (!io::writeRunCsv(o.out, p, r, &error, comments)) {
+    if (stream ? !stream->finish(p, r, &error, comments) : !io::writeRunCsv(o.out, p, r, &error, comments)) {
         reportError("simulate", error, kBadInput, exitCode);
         return;
     }
@@ -64,8 +80,8 @@ void runSimulate(const SimulateOptions& o, int& exitCode) {
         return;
     }
     if (o.out != "-")
-        std::cerr << "stickslip-cli simulate: " << r.samples.size() << " samples (" << r.stats.steps << " steps) -> "
-                  << o.out << '\n';
+        std::cerr << "stickslip-cli simulate: " << samples << " samples (" << r.stats.steps << " steps) -> " << o.out
+                  << '\n';
     exitCode = kOk;
 }
 

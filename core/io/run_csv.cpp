@@ -1,6 +1,11 @@
 #include "run_csv.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 
@@ -100,6 +105,76 @@ bool writeRunCsv(const std::string& path, const SimParams& p, const RunResult& r
     if (ok && f.commit()) return true;
     if (error) *error = f.error();
     return false;
+}
+
+namespace {
+constexpr size_t kStreamBlock = 1 << 20;
+}
+
+RunCsvStream::RunCsvStream(std::string path) : path_(std::move(path)) {}
+
+RunCsvStream::~RunCsvStream() {
+    if (rowsFd_ >= 0) ::close(rowsFd_);
+}
+
+bool RunCsvStream::open(std::string* error) {
+    const size_t slash = path_.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path_.substr(0, slash));
+    // Unnamed (O_TMPFILE) where the file system allows, else named and unlinked at once.
+    rowsFd_ = ::open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+    if (rowsFd_ < 0) {
+        std::string tmpl = path_ + ".rows.XXXXXX";
+        rowsFd_ = ::mkstemp(tmpl.data());
+        if (rowsFd_ >= 0) ::unlink(tmpl.c_str());
+    }
+    if (rowsFd_ < 0) {
+        if (error) *error = path_ + ": cannot create temporary file: " + std::strerror(errno);
+        return false;
+    }
+    block_.reserve(kStreamBlock + 512);
+    return true;
+}
+
+bool RunCsvStream::flush() {
+    const char* p = block_.data();
+    size_t left = block_.size();
+    while (left > 0 && error_.empty()) {
+        const ssize_t n = ::write(rowsFd_, p, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) error_ = path_ + ": write failed: " + std::strerror(errno);
+        else { p += n; left -= static_cast<size_t>(n); }
+    }
+    block_.clear();
+    return error_.empty();
+}
+
+void RunCsvStream::add(const Sample& x) {
+    if (rowsFd_ < 0 || !error_.empty()) return;
+    appendRow(block_, x);
+    if (block_.size() >= kStreamBlock) flush();
+}
+
+bool RunCsvStream::finish(const SimParams& p, const RunResult& r, std::string* error,
+                          const std::vector<std::string>& extraComments) {
+    auto fail = [&](const std::string& why) {
+        if (error) *error = why;
+        return false;
+    };
+    if (rowsFd_ < 0) return fail(path_ + ": not open for writing");
+    if (!flush()) return fail(error_);
+    AtomicFileWriter f(path_);
+    if (!f.open() || !f.write(runCsvHead(p, r, extraComments))) return fail(f.error());
+    if (::lseek(rowsFd_, 0, SEEK_SET) != 0) return fail(path_ + ": cannot read back the rows: " + std::strerror(errno));
+    std::string buf(kStreamBlock, '\0');
+    for (;;) {
+        const ssize_t n = ::read(rowsFd_, buf.data(), buf.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return fail(path_ + ": cannot read back the rows: " + std::strerror(errno));
+        if (n == 0) break;
+        if (!f.write(std::string_view(buf.data(), static_cast<size_t>(n)))) return fail(f.error());
+    }
+    if (!f.commit()) return fail(f.error());
+    return true;
 }
 
 bool slipHistoryFromTable(const CsvTable& t, SlipHistory& out, CsvError& err) {
