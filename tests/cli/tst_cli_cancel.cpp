@@ -116,6 +116,33 @@ private slots:
                      at("fit.json"));
     }
 
+    // A second Ctrl-C ends the process at once, even inside a write (held there by the hook):
+    // exit 128 + SIGINT, the previous file intact, only the temporary left beside it.
+    void secondSignalStopsAtOnce() {
+        const QString target = at("twice.csv");
+        const QByteArray previous = "# previous\n";
+        writeText(target, previous);
+        QProcess p;
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.insert("STICKSLIP_TEST_STALL_WRITE", "60");
+        p.setProcessEnvironment(env);
+        p.start(QStringLiteral(STICKSLIP_CLI), {"simulate", "--preset", "fig20", "--cycles", "5", "--out", target});
+        QByteArray err;
+        QVERIFY2(waitForStderr(p, "stalled mid-write of ", err, 600000), err.constData());
+        ::kill(static_cast<pid_t>(p.processId()), SIGINT);
+        QVERIFY2(waitForStderr(p, "cancelling", err, 10000), err.constData());
+        QVERIFY(p.state() == QProcess::Running);  // the first signal only asks
+        ::kill(static_cast<pid_t>(p.processId()), SIGINT);
+        QVERIFY2(p.waitForFinished(15000), "no exit within 15 s of the second signal");
+        QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+        QCOMPARE(p.exitCode(), 128 + SIGINT);
+        QCOMPARE(readAll(target), previous);
+        const QStringList temps = QDir(dir.path()).entryList({"twice.csv.*"}, QDir::Files);
+        QCOMPARE(temps.size(), 1);
+        QVERIFY2(temps.front().startsWith("twice.csv.tmp."), qPrintable(temps.front()));
+        QVERIFY(QFile::remove(dir.filePath(temps.front())));
+    }
+
     void sweepCancelsOnSigint() {
         cancelJob({"sweep", "--preset", "fig20", "--from", "0.2mm", "--to", "5mm", "--steps", "400", "--progress",
                    "--out", at("sweep.csv"), "--summary", at("sweep_sum.csv")},
