@@ -179,6 +179,12 @@ private slots:
                   {at("id.json"), at("id.html")}, "identify:");
     }
 
+    void reproduceCancelsOnSigint() {
+        cancelJob({"reproduce", "--figure", "20", "--steps", "300", "--out", at("fig")}, {at("fig/fig20_sweep.csv")},
+                  "sweep A");
+        QCOMPARE(QDir(at("fig")).entryList(QDir::Files), QStringList());
+    }
+
     void simulateCancelsOnSigint() {
         cancelJob({"simulate", "--preset", "fig20", "--cycles", "100000", "--out", at("long.csv")}, {at("long.csv")}, "",
                   SIGINT);
