@@ -10,8 +10,8 @@
 #include <cstdio>
 
 #include "../version.hpp"
-#include "atomic_file.hpp"
 #include "units.hpp"
+#include "atomic_file.hpp"
 
 namespace stickslip::io {
 
