@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cancel.hpp"
 #include "commands.hpp"
 #include "core/identify/fit.hpp"
 #include "core/identify/fit_report.hpp"
@@ -76,9 +77,11 @@ void runFit(const FitOptions& o, int& exitCode) {
     };
     FitRequest req = o.req;
     req.log = [](const std::string& line) { std::cerr << line << "\n"; };
+    req.cancel = &cancelFlag();
     FitOutcome out;
     PipelineStatus st;
     if (!runFitRequest(req, out, st)) return fail(st.message, exitFor(st.code));
+    if (cancelRequested()) return fail("cancelled; no output written", kCancelled);
     std::string err;
     if (!io::writeFileAtomically(o.report, out.report.dump(1) + "\n", &err)) return fail(err, kBadInput);
     if (!o.residuals.empty() && !io::writeFileAtomically(o.residuals, residualsCsv(out), &err)) return fail(err, kBadInput);

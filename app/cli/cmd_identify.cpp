@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cancel.hpp"
 #include "commands.hpp"
 #include "core/identify/fit.hpp"
 #include "core/identify/identify.hpp"
@@ -36,6 +37,7 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
         req.options.progress = [](const std::string& stage, double f) {
             std::cerr << "identify: " << stage << " (" << static_cast<int>(100 * f) << "%)\n";
         };
+    req.options.cancel = &cancelFlag();
     IdentifyResult res;
     nlohmann::json j;
     PipelineStatus st;
@@ -46,6 +48,7 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
                                                                : kRunFailed;
         return fail(st.message, code);
     }
+    if (cancelRequested()) return fail("cancelled; no output written", kCancelled);
     std::string err;
     if (!io::writeFileAtomically(o.report, j.dump(1) + "\n", &err)) return fail(o.report + ": " + err, kBadInput);
     if (!o.html.empty() && !io::writeFileAtomically(o.html, renderHtmlReport(res), &err))

@@ -8,6 +8,7 @@
 #include <memory>
 #include <tuple>
 
+#include "cancel.hpp"
 #include "cell_records.hpp"
 #include "checkpoint_plan.hpp"
 #include "cli_common.hpp"
@@ -113,7 +114,9 @@ void runMap(const MapCliOptions& o, int& exitCode) {
     mpiDistribute(
         todo, batchSize(mo.threads),
         [&](const std::vector<std::size_t>& mine, const EmitFn& emit) {
-            periodicityMapCells(p, mo, mine, {}, [&](const MapCell& c) { emit(encodeMapCell(c)); });
+            RunControl ctl;
+            ctl.cancel = &cancelFlag();
+            periodicityMapCells(p, mo, mine, ctl, [&](const MapCell& c) { emit(encodeMapCell(c)); });
         },
         [&](const std::string& bytes) {
             MapCell c;
@@ -128,6 +131,11 @@ void runMap(const MapCliOptions& o, int& exitCode) {
         return;
     }
     if (o.progress) std::fprintf(stderr, "\n");
+    // Cancelled: no output (the finished cells stay in the --checkpoint log, which resumes).
+    if (cancelRequested()) {
+        reportError("map", ckptError.empty() ? "map cancelled; no output written" : ckptError, kCancelled, exitCode);
+        return;
+    }
     const PeriodicityMap m = assemblePeriodicityMap(p, mo, records);
     const std::string csv = mapCsv(o, u1, u2, p, mo, m);
     if (!io::writeFileAtomically(o.out, csv, &error)) {

@@ -17,6 +17,7 @@
 #include <memory>
 #include <sstream>
 
+#include "cancel.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "core/analysis/correlation.hpp"
@@ -67,6 +68,7 @@ struct ReproduceOptions {
 // Writes a '\r'-updated progress line on stderr.
 RunControl progressTo(const std::string& what) {
     RunControl ctl;
+    ctl.cancel = &cancelFlag();
     ctl.progress = [what, last = -1](double f) mutable {
         const int pct = 10 * static_cast<int>(std::floor(10.0 * f));
         if (pct != last) {
@@ -78,7 +80,15 @@ RunControl progressTo(const std::string& what) {
     return ctl;
 }
 
+// After Ctrl-C nothing more is written (the files already written are whole), exit 5.
+bool stopIfCancelled(int& exitCode) {
+    if (!cancelRequested()) return false;
+    if (exitCode != kCancelled) reportError("reproduce", "cancelled; no further output written", kCancelled, exitCode);
+    return true;
+}
+
 bool writeText(const std::string& path, const std::string& text, int& exitCode) {
+    if (stopIfCancelled(exitCode)) return false;
     std::string error;
     if (!io::writeFileAtomically(path, text, &error)) {
         reportError("reproduce", error, kBadInput, exitCode);
@@ -90,6 +100,7 @@ bool writeText(const std::string& path, const std::string& text, int& exitCode) 
 
 bool exportFigure(const std::vector<const QwtPlot*>& plots, int columns, const QSizeF& size_mm,
                   const std::string& stem, int& exitCode) {
+    if (stopIfCancelled(exitCode)) return false;
     widgets::ExportOptions eo;
     eo.size_mm = size_mm;
     eo.resolution_dpi = 110;
@@ -135,6 +146,7 @@ bool sweepA(const SimParams& base, LawKind law, const ReproduceOptions& o, Sweep
     out = bifurcationSweep(p, so, progressTo(std::string("sweep A, ") + (law == LawKind::Coulomb ? "Coulomb" : "rate-state")));
     std::cerr << "  " << out.points.size() << " values in " << clock.elapsed() / 1000.0 << " s\n";
     if (!out.ok()) {
+        if (stopIfCancelled(exitCode)) return false;
         reportError("reproduce", "sweep failed: " + out.message, kRunFailed, exitCode);
         return false;
     }
@@ -176,6 +188,7 @@ bool recordedRun(const SimParams& base, const ReproduceOptions& o, SimParams& p,
     }
     run = simulate(p, progressTo("time series"));
     if (!run.ok()) {
+        if (stopIfCancelled(exitCode)) return false;
         reportError("reproduce", std::string("run ") + toString(run.status) + ": " + run.message, kRunFailed, exitCode);
         return false;
     }
@@ -193,6 +206,7 @@ bool section(const SimParams& base, const ReproduceOptions& o, PoincareSection& 
     }
     s = poincareSection(base, po, progressTo("Poincare section"));
     if (!s.ok()) {
+        if (stopIfCancelled(exitCode)) return false;
         reportError("reproduce", "Poincare section failed: " + s.message, kRunFailed, exitCode);
         return false;
     }

@@ -2,6 +2,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cancel.hpp"
 #include "cli_common.hpp"
 #include "core/integrate/simulate.hpp"
 #include "core/io/run_csv.hpp"
@@ -44,10 +45,33 @@ void runSimulate(const SimulateOptions& o, int& exitCode) {
         comments.push_back("input = " + o.input);
     }
 
-    const RunResult r = simulate(p, RunControl{}, o.input.empty() ? nullptr : &history);
-    // A failed run still writes what it computed (its status and message are in the '#'
-    // lines) so the lead-up to the failure can be inspected; the exit code says it failed.
-    if (!io::writeRunCsv(o.out, p, r, &error, comments)) {
+    RunControl ctl;
+    ctl.cancel = &cancelFlag();
+    // A file is written while the run computes (its rows never all in memory); standard
+    // output gets the whole text at the end, since the '#' lines with the status come first.
+    std::unique_ptr<io::RunCsvStream> stream;
+    long streamed = 0;
+    if (o.out != "-") {
+        stream = std::make_unique<io::RunCsvStream>(o.out);
+        if (!stream->open(&error)) {
+            reportError("simulate", error, kBadInput, exitCode);
+            return;
+        }
+        ctl.onSample = [&stream, &streamed](const Sample& x) {
+            stream->add(x);
+            ++streamed;
+        };
+    }
+    const RunResult r = simulate(p, ctl, o.input.empty() ? nullptr : &history);
+    const long samples = stream ? streamed : static_cast<long>(r.samples.size());
+    // Cancelled: nothing is written (a partial run under the output name would pass for a
+    // whole one). A failed run still writes what it computed (its status and message are in
+    // the '#' lines) so the lead-up to the failure can be inspected; the exit code says it failed.
+    if (r.status == RunStatus::Cancelled || cancelRequested()) {
+        reportError("simulate", "cancelled; no output written", kCancelled, exitCode);
+        return;
+    }
+    if (stream ? !stream->finish(p, r, &error, comments) : !io::writeRunCsv(o.out, p, r, &error, comments)) {
         reportError("simulate", error, kBadInput, exitCode);
         return;
     }
@@ -55,13 +79,9 @@ void runSimulate(const SimulateOptions& o, int& exitCode) {
         reportError("simulate", "run failed: " + r.message, kRunFailed, exitCode);
         return;
     }
-    if (r.status == RunStatus::Cancelled) {
-        reportError("simulate", "run cancelled: " + r.message, kCancelled, exitCode);
-        return;
-    }
     if (o.out != "-")
-        std::cerr << "stickslip-cli simulate: " << r.samples.size() << " samples (" << r.stats.steps << " steps) -> "
-                  << o.out << '\n';
+        std::cerr << "stickslip-cli simulate: " << samples << " samples (" << r.stats.steps << " steps) -> " << o.out
+                  << '\n';
     exitCode = kOk;
 }
 
@@ -80,7 +100,7 @@ void addSimulateCommand(CLI::App& root, int& exitCode) {
     cmd->footer(
         "Exit codes: 0 ok, 2 bad arguments or parameters, 3 unreadable or malformed input (file:line:column) or "
         "an output file that cannot be written, "
-        "4 run failed numerically.");
+        "4 run failed numerically, 5 cancelled (Ctrl-C or SIGTERM; no output written).");
     cmd->callback([&exitCode, o] { runSimulate(*o, exitCode); });
 }
 

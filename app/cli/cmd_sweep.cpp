@@ -10,6 +10,7 @@
 #include <tuple>
 #include <numbers>
 
+#include "cancel.hpp"
 #include "cell_records.hpp"
 #include "checkpoint_plan.hpp"
 #include "cli_common.hpp"
@@ -68,7 +69,9 @@ bool distributedIndependentSweep(const SweepCliOptions& o, const SimParams& p, c
     mpiDistribute(
         todo, batchSize(so.threads),
         [&](const std::vector<std::size_t>& mine, const EmitFn& emit) {
-            independentSweepValues(p, so, mine, {}, [&](const SweepValueRecord& r) { emit(encodeSweepValue(r)); });
+            RunControl ctl;
+            ctl.cancel = &cancelFlag();
+            independentSweepValues(p, so, mine, ctl, [&](const SweepValueRecord& r) { emit(encodeSweepValue(r)); });
         },
         [&](const std::string& bytes) {
             SweepValueRecord r;
@@ -166,6 +169,7 @@ void runSweep(const SweepCliOptions& o, int& exitCode) {
         return;
     }
     RunControl ctl;
+    ctl.cancel = &cancelFlag();
     if (o.progress)
         ctl.progress = [](double f) { std::fprintf(stderr, "\rsweep: %5.1f %%", 100.0 * f); };
     if (so.mode == SweepMode::Continuation && !o.checkpoint.empty()) {
@@ -187,6 +191,11 @@ void runSweep(const SweepCliOptions& o, int& exitCode) {
         return;
     }
     if (o.progress) std::fprintf(stderr, "\n");
+    // Cancelled: no output (the finished values stay in the --checkpoint log, which resumes).
+    if (cancelRequested()) {
+        reportError("sweep", "sweep cancelled; no output written", kCancelled, exitCode);
+        return;
+    }
     if (!writeSweepFiles(o, unit, p, so, r, exitCode)) return;
     if (r.status == RunStatus::Failed) { reportError("sweep", "sweep failed: " + r.message, kRunFailed, exitCode); return; }
     if (r.status == RunStatus::Cancelled) { reportError("sweep", "sweep cancelled", kCancelled, exitCode); return; }

@@ -1,6 +1,7 @@
 // stickslip-cli: the headless front end of StickSlip Lab.
 #include <iostream>
 
+#include "cancel.hpp"
 #include "commands.hpp"
 #include "man_page.hpp"
 #include "mpi_runner.hpp"
@@ -9,6 +10,7 @@
 int main(int argc, char** argv) {
     using namespace stickslip::cli;
     mpiStart(argc, argv);  // a no-op unless launched by mpirun/srun
+    installCancelHandlers();
     CLI::App app{"StickSlip Lab command line: simulate, sweep, analyse and fit friction-induced stick-slip"};
     app.set_version_flag("--version", std::string("stickslip-cli ") + stickslip::kVersion);
     app.require_subcommand(1);

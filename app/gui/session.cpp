@@ -12,6 +12,10 @@
 namespace stickslip::gui {
 
 namespace {
+// Session format version written by this program. Readers accept every version up to this
+// one (1: the first format; files without "program", "coulomb", "views" or "windowState", as
+// hand-written or early sessions are, load with those left at their defaults) and refuse a
+// newer one (naming it) rather than guessing at fields they do not know.
 constexpr int kFormat = 1;
 }
 
@@ -57,6 +61,18 @@ bool Session::fromJson(const QByteArray& json, Session& out, QString* error) {
     const QJsonObject root = doc.object();
     if (root.value("format").toString() != "stickslip-session")
         return fail(QStringLiteral("not a StickSlip Lab session (\"format\" is not \"stickslip-session\")"));
+    // A missing "version" is read as 1 (hand-written sessions often leave it out).
+    const QJsonValue version = root.contains("version") ? root.value("version") : QJsonValue(1);
+    if (!version.isDouble() || version.toDouble() != std::floor(version.toDouble()) || version.toDouble() < 1)
+        return fail(QStringLiteral("\"version\" must be a whole number from 1 to %1").arg(kFormat));
+    if (version.toDouble() > kFormat)
+        return fail(QStringLiteral("session format version %1 was written by a newer StickSlip Lab%2; this version "
+                                   "(%3) reads versions 1 to %4")
+                        .arg(version.toDouble())
+                        .arg(root.value("program").isString() ? " (" + root.value("program").toString() + ")"
+                                                              : QString())
+                        .arg(QString::fromLatin1(kVersion))
+                        .arg(kFormat));
     Session s;
     if (!parseModelChoice(root.value("model").toString(), s.settings.model))
         return fail(QStringLiteral("unknown model \"%1\" (rate-state, coulomb or both)").arg(root.value("model").toString()));

@@ -126,7 +126,7 @@ LyapunovResult largestLyapunovFrom(const DynamicsModel& m, DynState& ref, long s
                                    PoincareSection* section, bool companionThread) {
     LyapunovResult res;
     const double period = m.dt_s * static_cast<double>(stepsPerPeriod);
-    RunControl quiet{ctl.cancel, {}};
+    RunControl quiet{ctl.cancel, {}, {}};
     PoincareSection local;
     PoincareSection& sec = section ? *section : local;
     sec.period_s = period;
@@ -188,7 +188,7 @@ LyapunovResult largestLyapunov(const SimParams& p, const LyapunovOptions& opt, c
     const long n = stepsPerPeriodFor(p, opt.stepsPerPeriod);
     const DynamicsModel m = poincareModel(p, n);
     DynState s = m.initialState(0.0);
-    RunControl quiet{ctl.cancel, {}};
+    RunControl quiet{ctl.cancel, {}, {}};
     StepReport rep = detail::settleCycles(m, s, n, opt.settleCycles, quiet);
     if (rep.status != RunStatus::Ok) {
         res.status = rep.status;

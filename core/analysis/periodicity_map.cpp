@@ -96,7 +96,7 @@ std::vector<MapCell> periodicityMapCells(const SimParams& base, const MapOptions
             return out;
         }
     const long n = stepsPerPeriodFor(base, opt.stepsPerPeriod);
-    RunControl quiet{ctl.cancel, {}};
+    RunControl quiet{ctl.cancel, {}, {}};
     parallelForReporting(
         indices.size(), opt.threads,
         [&](std::size_t k) { out[k] = computeCell(base, opt, values1, values2, n, indices[k], quiet); },

@@ -91,7 +91,7 @@ PoincareSection poincareSectionFrom(const DynamicsModel& m, DynState& s, long st
                                     long cycles, const RunControl& ctl) {
     PoincareSection out;
     out.period_s = m.dt_s * static_cast<double>(stepsPerPeriod);
-    RunControl quiet{ctl.cancel, {}};
+    RunControl quiet{ctl.cancel, {}, {}};
     const double total = static_cast<double>(settle + cycles);
     for (long c = 0; c < settle; ++c) {
         StepReport rep = advanceQuiet(m, s, stepsPerPeriod, quiet);

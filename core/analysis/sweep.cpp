@@ -180,7 +180,7 @@ SweepResult bifurcationSweep(const SimParams& base, const SweepOptions& opt, con
     const std::vector<double> up = sweepValues(opt.from < opt.to ? opt.from : opt.to,
                                                opt.from < opt.to ? opt.to : opt.from, opt.steps);
     std::vector<double> down(up.rbegin(), up.rend());
-    RunControl quiet{ctl.cancel, {}};
+    RunControl quiet{ctl.cancel, {}, {}};
 
     if (opt.mode == SweepMode::Continuation) {
         // Progress over every value of every branch, possibly from two threads.
@@ -265,7 +265,7 @@ std::vector<SweepValueRecord> independentSweepValues(const SimParams& base, cons
         return out;
     }
     const long n = stepsPerPeriodFor(base, opt.stepsPerPeriod);
-    RunControl quiet{ctl.cancel, {}};
+    RunControl quiet{ctl.cancel, {}, {}};
     parallelForReporting(
         indices.size(), opt.threads,
         [&](std::size_t k) {

@@ -93,8 +93,15 @@ public:
                 if (!dup) todo.push_back(i);
             }
         }
+        const FitProblem& prob = *map_.prob;
+        if (!todo.empty() && prob.cancel && prob.cancel->load(std::memory_order_relaxed)) {
+            // Cancelled: no new batch (a dynamics batch takes seconds). The points fail and
+            // are not remembered; the iteration callback then aborts the solve.
+            for (Ptr& o : out)
+                if (!o) o = std::make_shared<Result>();
+            return out;
+        }
         if (!todo.empty()) {
-            const FitProblem& prob = *map_.prob;
             const size_t m = prob.residualCount;
             std::vector<std::vector<double>> values(todo.size()), rs(todo.size(), std::vector<double>(m, 0.0));
             std::vector<char> ok(todo.size(), 0);

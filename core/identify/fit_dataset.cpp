@@ -274,6 +274,9 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
             for (size_t t = next.fetch_add(1); t < nTasks; t = next.fetch_add(1)) {
                 const size_t pt = t / nRuns, k = t % nRuns;
                 if (!inBounds[pt]) continue;
+                // Cancelled: the remaining tasks of the batch fail at once instead of each
+                // predicting a whole run (the cancel latency of a dynamics fit).
+                if (st.cancel && st.cancel->load(std::memory_order_relaxed)) continue;
                 const Prediction p = predictRun(fitRuns[k], st.setup, specs[pt], st.predict);
                 if (!p.ok || p.index.size() != layout[k].size()) continue;
                 const std::vector<double>& F = fitRuns[k].run[Signal::Friction];

@@ -64,7 +64,7 @@ RunResult simulateDynamics(const DynamicsModel& m, DynState& s, long steps, long
     if (outputEvery < 1) outputEvery = 1;
     // Reserve what is cheap; long runs grow as they go (a cancelled run may never need it all).
     res.samples.reserve(static_cast<size_t>(std::min<long>(steps / outputEvery + 2, 1L << 20)));
-    if (recordStart) res.samples.push_back(toSample(m, s));
+    if (recordStart) ctl.output(res.samples, toSample(m, s));
     const long N = std::max(0L, period.stepsPerPeriod);
     res.period.stepsPerPeriod = N;
     // Countdowns to the next output sample and the next whole period (no division per step).
@@ -85,7 +85,7 @@ RunResult simulateDynamics(const DynamicsModel& m, DynState& s, long steps, long
                 const double V = std::abs(stage.velocity() - st.v);
                 if (V > maxV) maxV = V;
                 if (--untilOutput == 0) {
-                    res.samples.push_back(toSample(m, st));
+                    ctl.output(res.samples, toSample(m, st));
                     untilOutput = outputEvery;
                 }
                 if (--untilPeriod == 0) {
@@ -97,7 +97,7 @@ RunResult simulateDynamics(const DynamicsModel& m, DynState& s, long steps, long
         } else {
             auto obs = [&](const DynState& st) {
                 if (--untilOutput == 0) {
-                    res.samples.push_back(toSample(m, st));
+                    ctl.output(res.samples, toSample(m, st));
                     untilOutput = outputEvery;
                 }
             };

@@ -87,7 +87,7 @@ RunResult runPrescribed(const Law& law, double tNconst, const SlipHistory& h, in
         s.alpha = st.alpha;
         s.slipRate_mps = slipRate;
         s.stuck = stuck;
-        res.samples.push_back(s);
+        ctl.output(res.samples, s);
     };
     record(0, 0.0, true);
     // The law's per-step constants are prepared once and kept while Δt and t_N stay the same

@@ -56,6 +56,14 @@ struct RunControl {
     const std::atomic<bool>* cancel = nullptr;
     std::function<void(double fraction)> progress;  // called from the running thread
     bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+    // When set, every output sample is handed here (on the running thread, in time order)
+    // instead of being kept in RunResult::samples: a long run streamed to a file then holds
+    // no samples in memory. The run's status, message and stats are still returned.
+    std::function<void(const Sample&)> onSample;
+    void output(std::vector<Sample>& samples, const Sample& s) const {
+        if (onSample) onSample(s);
+        else samples.push_back(s);
+    }
 };
 
 }  // namespace stickslip

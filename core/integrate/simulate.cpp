@@ -49,7 +49,7 @@ RunResult simulate(const SimParams& p, const RunControl& ctl, const SlipHistory*
         o.alpha = st.alpha;
         o.slipRate_mps = slipSinceOutput / (static_cast<double>(every) * dt);
         o.stuck = stuck;
-        r.samples.push_back(o);
+        ctl.output(r.samples, o);
     };
     if (drop == 0) record(0);
     std::visit(

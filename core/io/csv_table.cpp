@@ -1,5 +1,7 @@
 #include "csv_table.hpp"
 
+#include "atomic_file.hpp"
+
 #include <csv.h>
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -246,51 +248,10 @@ bool readCsvTable(const std::string& path, CsvTable& out, CsvError& err) {
 }
 
 bool writeFileAtomically(const std::string& path, const std::string& content, std::string* error) {
-    auto fail = [&](const std::string& what) {
-        if (error) *error = path + ": " + what;
-        return false;
-    };
-    if (path == "-") {
-        std::cout.write(content.data(), static_cast<std::streamsize>(content.size()));
-        std::cout.flush();
-        if (!std::cout) return fail("cannot write to standard output");
-        return true;
-    }
-    if (path.empty()) return fail("empty file name");
-
-    // The temporary lives in the target's directory so that rename() is atomic.
-    std::string tmpl = path + ".tmp.XXXXXX";
-    const int fd = ::mkstemp(tmpl.data());
-    if (fd < 0) return fail(std::string("cannot create temporary file: ") + std::strerror(errno));
-    struct stat st {};
-    const mode_t mode = (::stat(path.c_str(), &st) == 0) ? (st.st_mode & 07777) : 0644;
-    ::fchmod(fd, mode);
-
-    const char* p = content.data();
-    size_t left = content.size();
-    while (left > 0) {
-        const ssize_t n = ::write(fd, p, left);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            const std::string why = std::strerror(errno);
-            ::close(fd);
-            ::unlink(tmpl.c_str());
-            return fail("write failed: " + why);
-        }
-        p += n;
-        left -= static_cast<size_t>(n);
-    }
-    if (::fsync(fd) != 0 || ::close(fd) != 0) {
-        const std::string why = std::strerror(errno);
-        ::unlink(tmpl.c_str());
-        return fail("write failed: " + why);
-    }
-    if (::rename(tmpl.c_str(), path.c_str()) != 0) {
-        const std::string why = std::strerror(errno);
-        ::unlink(tmpl.c_str());
-        return fail("cannot replace file: " + why);
-    }
-    return true;
+    AtomicFileWriter f(path);
+    if (f.open() && f.write(content) && f.commit()) return true;
+    if (error) *error = f.error();
+    return false;
 }
 
 }  // namespace stickslip::io

@@ -1,11 +1,17 @@
 #include "run_csv.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 
 #include "../version.hpp"
 #include "units.hpp"
+#include "atomic_file.hpp"
 
 namespace stickslip::io {
 
@@ -27,9 +33,11 @@ std::vector<std::vector<double>> runCsvValues(const RunResult& r) {
     return cols;
 }
 
-std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector<std::string>& extraComments) {
+namespace {
+
+// The '#' lines and the header of a run file.
+std::string runCsvHead(const SimParams& p, const RunResult& r, const std::vector<std::string>& extraComments) {
     std::string s;
-    char buf[512];
     s += std::string("# StickSlip Lab ") + kVersion + " run\n";
     s += std::string("# version = ") + kVersion + "\n";
     s += std::string("# model = ") + toString(p.law) + "\n";
@@ -58,18 +66,115 @@ std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector
     const auto& cols = runCsvColumns();
     for (size_t j = 0; j < cols.size(); ++j) s += (j ? "," : "") + cols[j];
     s += '\n';
+    return s;
+}
+
+void appendRow(std::string& s, const Sample& x) {
+    char buf[512];
+    const int n = std::snprintf(buf, sizeof buf, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d\n", x.t_s,
+                                x.stage_m, x.slider_m, x.sliderVel_mps, x.relVel_mps, x.force_N, x.ratio, x.alpha,
+                                x.stuck ? 1 : 0);
+    s.append(buf, static_cast<size_t>(n));
+}
+
+}  // namespace
+
+std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector<std::string>& extraComments) {
+    std::string s = runCsvHead(p, r, extraComments);
     s.reserve(s.size() + r.samples.size() * 150);
-    for (const Sample& x : r.samples) {
-        std::snprintf(buf, sizeof buf, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d\n", x.t_s, x.stage_m,
-                      x.slider_m, x.sliderVel_mps, x.relVel_mps, x.force_N, x.ratio, x.alpha, x.stuck ? 1 : 0);
-        s += buf;
-    }
+    for (const Sample& x : r.samples) appendRow(s, x);
     return s;
 }
 
 bool writeRunCsv(const std::string& path, const SimParams& p, const RunResult& r, std::string* error,
                  const std::vector<std::string>& extraComments) {
-    return writeFileAtomically(path, runCsvText(p, r, extraComments), error);
+    // Streamed in blocks: the text of a long run (about 130 bytes per sample) is never held
+    // whole in memory next to its samples.
+    constexpr size_t kBlock = 1 << 20;
+    AtomicFileWriter f(path);
+    bool ok = f.open() && f.write(runCsvHead(p, r, extraComments));
+    std::string block;
+    block.reserve(kBlock + 512);
+    for (size_t i = 0; ok && i < r.samples.size(); ++i) {
+        appendRow(block, r.samples[i]);
+        if (block.size() >= kBlock || i + 1 == r.samples.size()) {
+            ok = f.write(block);
+            block.clear();
+        }
+    }
+    if (ok && f.commit()) return true;
+    if (error) *error = f.error();
+    return false;
+}
+
+namespace {
+constexpr size_t kStreamBlock = 1 << 20;
+}
+
+RunCsvStream::RunCsvStream(std::string path) : path_(std::move(path)) {}
+
+RunCsvStream::~RunCsvStream() {
+    if (rowsFd_ >= 0) ::close(rowsFd_);
+}
+
+bool RunCsvStream::open(std::string* error) {
+    const size_t slash = path_.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path_.substr(0, slash));
+    // Unnamed (O_TMPFILE) where the file system allows, else named and unlinked at once.
+    rowsFd_ = ::open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+    if (rowsFd_ < 0) {
+        std::string tmpl = path_ + ".rows.XXXXXX";
+        rowsFd_ = ::mkstemp(tmpl.data());
+        if (rowsFd_ >= 0) ::unlink(tmpl.c_str());
+    }
+    if (rowsFd_ < 0) {
+        if (error) *error = path_ + ": cannot create temporary file: " + std::strerror(errno);
+        return false;
+    }
+    block_.reserve(kStreamBlock + 512);
+    return true;
+}
+
+bool RunCsvStream::flush() {
+    const char* p = block_.data();
+    size_t left = block_.size();
+    while (left > 0 && error_.empty()) {
+        const ssize_t n = ::write(rowsFd_, p, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) error_ = path_ + ": write failed: " + std::strerror(errno);
+        else { p += n; left -= static_cast<size_t>(n); }
+    }
+    block_.clear();
+    return error_.empty();
+}
+
+void RunCsvStream::add(const Sample& x) {
+    if (rowsFd_ < 0 || !error_.empty()) return;
+    appendRow(block_, x);
+    if (block_.size() >= kStreamBlock) flush();
+}
+
+bool RunCsvStream::finish(const SimParams& p, const RunResult& r, std::string* error,
+                          const std::vector<std::string>& extraComments) {
+    auto fail = [&](const std::string& why) {
+        if (error) *error = why;
+        return false;
+    };
+    if (rowsFd_ < 0) return fail(path_ + ": not open for writing");
+    if (!flush()) return fail(error_);
+    AtomicFileWriter f(path_);
+    if (!f.open() || !f.write(runCsvHead(p, r, extraComments))) return fail(f.error());
+    if (::lseek(rowsFd_, 0, SEEK_SET) != 0) return fail(path_ + ": cannot read back the rows: " + std::strerror(errno));
+    std::string buf(kStreamBlock, '\0');
+    for (;;) {
+        const ssize_t n = ::read(rowsFd_, buf.data(), buf.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return fail(path_ + ": cannot read back the rows: " + std::strerror(errno));
+        if (n == 0) break;
+        if (!f.write(std::string_view(buf.data(), static_cast<size_t>(n)))) return fail(f.error());
+    }
+    if (!f.commit()) return fail(f.error());
+    return true;
 }
 
 bool slipHistoryFromTable(const CsvTable& t, SlipHistory& out, CsvError& err) {

@@ -27,6 +27,29 @@ std::string runCsvText(const SimParams& p, const RunResult& r, const std::vector
 bool writeRunCsv(const std::string& path, const SimParams& p, const RunResult& r, std::string* error,
                  const std::vector<std::string>& extraComments = {});
 
+// A run file written while the run computes: pass `[&](const Sample& x) { stream.add(x); }` as
+// RunControl::onSample. The rows go to an unnamed temporary in the target's directory (gone
+// when the process ends, even by kill -9); finish() then writes the '#' lines, which carry the
+// run's final status, and the rows atomically to `path`. Memory stays at one block of text
+// however long the run; the file is byte for byte what writeRunCsv writes. Not for "-".
+class RunCsvStream {
+public:
+    explicit RunCsvStream(std::string path);
+    ~RunCsvStream();
+    RunCsvStream(const RunCsvStream&) = delete;
+    RunCsvStream& operator=(const RunCsvStream&) = delete;
+    bool open(std::string* error);
+    void add(const Sample& x);  // a write error is kept and reported by finish()
+    // `r` gives the status and message (its samples are not used: they came through add()).
+    bool finish(const SimParams& p, const RunResult& r, std::string* error,
+                const std::vector<std::string>& extraComments = {});
+
+private:
+    bool flush();
+    std::string path_, block_, error_;
+    int rowsFd_ = -1;
+};
+
 // A prescribed-slip history from a table, by header name: `time_s` and one of
 // `rel_disp_m` (g), `stage_disp_m` (slider held fixed, so g = u) or `rel_vel_mps` (V,
 // integrated from g = 0), in that order of preference; `rel_vel_mps` is also kept as the

@@ -159,6 +159,28 @@ private slots:
         QCOMPARE(res.startsTried, 1);
     }
 
+    // Cancel raised while residuals are being computed (Ctrl-C during a dynamics fit, whose
+    // batches take seconds): no further batch is started, not even the Jacobian's points of
+    // the same iteration; the fit ends Cancelled.
+    void cancelDuringABatchStartsNoOther() {
+        std::atomic<bool> cancel{false};
+        FitProblem p;
+        p.parameters = {{"x", 0.2, 0.0, 1.0, true, ParamScale::Linear}, {"y", 0.3, 0.0, 1.0, true, ParamScale::Linear}};
+        p.residualCount = 3;
+        long batches = 0;
+        p.batchResiduals = [&](const std::vector<std::vector<double>>& pts, std::vector<std::vector<double>>& rs,
+                               std::vector<char>& ok) {
+            ++batches;
+            ok.assign(pts.size(), 1);
+            for (size_t k = 0; k < pts.size(); ++k) rs[k] = {pts[k][0] - 0.5, pts[k][1] - 0.1, pts[k][0] * pts[k][1]};
+            cancel = true;
+        };
+        p.cancel = &cancel;
+        const FitResult res = fitLeastSquares(p);
+        QVERIFY(res.status == FitStatus::Cancelled);
+        QCOMPARE(batches, 1L);
+    }
+
     // The same problem through the batch callback gives the same fit bit for bit; the reported
     // evaluations are the residual vectors actually computed (repeated points are remembered).
     void batchCallbackAndEvaluationCount() {
