@@ -35,6 +35,11 @@ int CsvTable::column(const std::string& name) const {
     return -1;
 }
 
+long CsvTable::cellColumn(size_t row, size_t col) const {
+    const size_t k = row * header.size() + col;
+    return col < header.size() && k < cellColumns.size() ? cellColumns[k] : 0;
+}
+
 size_t CsvTable::rows() const { return columns.empty() ? 0 : columns.front().size(); }
 
 namespace {
@@ -222,6 +227,7 @@ bool parseCsvTable(const std::string& text, const std::string& nameForErrors, Cs
             if (!parseNumber(cell, v, why))
                 return fail(lineNo, col, why + " in column '" + t.header[j] + "'");
             t.columns[j].push_back(v);
+            t.cellColumns.push_back(col);
         }
         t.rowLines.push_back(lineNo);
     }
