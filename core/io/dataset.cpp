@@ -263,12 +263,14 @@ bool readManifest(const std::string& path, Manifest& out, DatasetError& err) {
                 const double v = r[jk].get<double>();
                 // The amplitude and the normal load are channels of the range table; the other
                 // settings are checked by the parameters' own validation once used.
-                const std::string pks = pk;
-                const Channel c = pks == "A" ? Channel::Displacement : Channel::NormalForce;
+                const std::string key = pk;
                 ValueProblem bad;
-                if (!std::isfinite(v) || ((pks == "A" || pks == "tN") && !checkChannel(c, jk, {v}, bad))) {
-                    err = DatasetError{path, 0, 0, "manifest run " + r["file"].get<std::string>() + ": " +
-                                                       (bad.message.empty() ? std::string("\"") + jk + "\" is not finite" : bad.message)};
+                bool ok = std::isfinite(v);
+                if (!ok) bad.message = std::string("\"") + jk + "\" is not finite";
+                else if (key == "A") ok = checkChannel(Channel::Displacement, jk, {v}, bad);
+                else if (key == "tN") ok = checkChannel(Channel::NormalForce, jk, {v}, bad);
+                if (!ok) {
+                    err = DatasetError{path, 0, 0, "manifest run " + r["file"].get<std::string>() + ": " + bad.message};
                     return false;
                 }
                 s[pk] = v;
