@@ -119,7 +119,7 @@ std::string stepBudgetProblem(double steps, long maxSteps) {
     std::ostringstream s;
     s.precision(6);
     s << "step budget exceeded: the run needs " << steps << " steps, more than max_steps = "
-      << static_cast<double>(maxSteps) << "; use a larger dt or fewer cycles";
+      << static_cast<double>(maxSteps) << "; use a larger dt or a shorter run";
     return s.str();
 }
 

@@ -227,7 +227,7 @@ bool parseCsvTable(const std::string& text, const std::string& nameForErrors, Cs
             if (!parseNumber(cell, v, why))
                 return fail(lineNo, col, why + " in column '" + t.header[j] + "'");
             t.columns[j].push_back(v);
-            t.cellColumns.push_back(col);
+            t.cellColumns.push_back(col <= INT32_MAX ? static_cast<std::int32_t>(col) : 0);
         }
         t.rowLines.push_back(lineNo);
     }

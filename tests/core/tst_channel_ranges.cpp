@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "core/io/channel_ranges.hpp"
+#include "core/io/csv_table.hpp"
 #include "core/io/dataset.hpp"
 #include "core/io/run_csv.hpp"
 
@@ -105,6 +106,21 @@ private slots:
         QVERIFY(!checkChannel(Channel::Displacement, "g", {1e-3, 2e4}, p, 1e-3, "mm"));
         QVERIFY2(contains(p.message, "g = 2e+07 mm (20000 m)"), p.message.c_str());
         QVERIFY2(contains(p.message, "[-10, 10] m"), p.message.c_str());
+    }
+
+    void cellColumnsPointAtCells() {
+        CsvTable t;
+        CsvError e;
+        QVERIFY(parseCsvTable("# c\na;bb;c\n1;  22;3\n\n444;5;66\n", "t.csv", t, e));
+        QCOMPARE(t.cellColumns.size(), size_t(6));
+        QCOMPARE(t.cellColumn(0, 0), 1L);
+        QCOMPARE(t.cellColumn(0, 1), 3L);  // where the field starts, blanks included
+        QCOMPARE(t.cellColumn(0, 2), 8L);
+        QCOMPARE(t.cellColumn(1, 1), 5L);
+        QCOMPARE(t.cellColumn(1, 2), 7L);
+        QCOMPARE(t.rowLines[1], 5L);
+        QCOMPARE(t.cellColumn(2, 0), 0L);  // no such row
+        QCOMPARE(t.cellColumn(0, 3), 0L);  // no such column
     }
 
     // The case: a slip of 1e300 m in a prescribed history is rejected by the reader.
