@@ -217,6 +217,19 @@ private slots:
         QVERIFY2(force.err.contains("2e+07"), force.err.constData());
     }
 
+    // A run that needs more steps than --max-steps fails at once with a clear message (exit 4).
+    void stepBudgetExit4() {
+        const Result r = runCli({"simulate", "--dt", "1e-9", "--cycles", "100", "--max-steps", "1000000", "--out", "-"});
+        QCOMPARE(r.exitCode, 4);
+        QVERIFY2(r.err.contains("step budget exceeded: the run needs 3.33333e+10 steps, more than max_steps = 1e+06"),
+                 r.err.constData());
+        const Result bad = runCli({"simulate", "--max-steps", "0", "--out", "-"});
+        QCOMPARE(bad.exitCode, 2);
+        QVERIFY2(bad.err.contains("--max-steps '0'"), bad.err.constData());
+        const Result ok = runCli({"simulate", "--cycles", "1", "--max-steps", "10001", "--out", "-"});
+        QVERIFY2(ok.exitCode == 0, ok.err.constData());
+    }
+
     // A velocity history V = const read from a file drives the block into steady sliding;
     // the CLI output equals the core run on the same history and ends at Eq. 5.
     void prescribedFromInput() {
