@@ -11,14 +11,14 @@ namespace {
 // value beyond them is a unit mix-up or a corrupted file that would otherwise overflow the
 // return map (F = ε_T g with g = 1e300 m) or stall the integrator.
 const std::vector<ChannelRange> kRanges = {
-    {Channel::Time, "time", "s", -1e9, 1e9, false,
+    {Channel::Time, "time", "s", -1e9, 1e9,
      "sample time: finite, strictly increasing, within about 30 years of the origin"},
-    {Channel::Displacement, "displacement", "m", -10.0, 10.0, false,
+    {Channel::Displacement, "displacement", "m", -10.0, 10.0,
      "stage/slider displacement and slip: up to metres"},
-    {Channel::Velocity, "velocity", "m/s", -1e3, 1e3, false, "stage/slider/relative velocity: up to 1 km/s"},
-    {Channel::Acceleration, "acceleration", "m/s^2", -1e6, 1e6, false, "slider acceleration: up to 1e6 m/s^2"},
-    {Channel::Force, "force", "N", -1e6, 1e6, false, "friction force and band tension: up to 1 MN"},
-    {Channel::NormalForce, "normal_force", "N", 0.0, 1e6, false,
+    {Channel::Velocity, "velocity", "m/s", -1e3, 1e3, "stage/slider/relative velocity: up to 1 km/s"},
+    {Channel::Acceleration, "acceleration", "m/s^2", -1e6, 1e6, "slider acceleration: up to 1e6 m/s^2"},
+    {Channel::Force, "force", "N", -1e6, 1e6, "friction force and band tension: up to 1 MN"},
+    {Channel::NormalForce, "normal_force", "N", 0.0, 1e6,
      "normal load: compressive (non-negative), up to 1 MN"},
 };
 
@@ -30,13 +30,12 @@ std::string shortestNumber(double v) {
     return std::string(buf, res.ptr);
 }
 
-bool ChannelRange::allows(double v) const {
-    if (!std::isfinite(v)) return false;
-    return (minExclusive ? v > min : v >= min) && v <= max;
-}
+bool ChannelRange::allows(double v) const { return std::isfinite(v) && v >= min && v <= max; }
 
 std::string ChannelRange::rangeText() const {
-    return std::string(minExclusive ? "(" : "[") + shortestNumber(min) + ", " + shortestNumber(max) + "] " + unit;
+    std::string s(1, '[');  // appended, not "[" + string: GCC 12 warns falsely (-Wrestrict) on that
+    s += shortestNumber(min) + ", " + shortestNumber(max) + "] " + unit;
+    return s;
 }
 
 const std::vector<ChannelRange>& channelRanges() { return kRanges; }

@@ -16,12 +16,11 @@ struct ChannelRange {
     Channel channel;
     const char* key;    // "time", "displacement", ...
     const char* unit;   // SI unit as printed
-    double min;         // allowed values: min <= v <= max (or min < v when minExclusive)
+    double min;         // allowed values: finite, min <= v <= max
     double max;
-    bool minExclusive;
     const char* doc;    // one line: what the channel covers and why this range
     bool allows(double valueSI) const;
-    std::string rangeText() const;  // "[-10, 10] m", "(0, 1e+06] N"
+    std::string rangeText() const;  // "[-10, 10] m"
 };
 
 // Every channel, in Channel order.
