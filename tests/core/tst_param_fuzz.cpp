@@ -75,7 +75,7 @@ SimParams drawParams(Draw& d) {
     p.rateState.vc_mps = d.logUniform(1e-5, 100.0);
     p.cycles = d.uniform(0.3, 3.0);
     p.transientCycles = d.chance(0.7) ? 0.0 : d.uniform(0.0, 1.0);
-    p.integration.outputInterval_s = d.logUniform(1e-5, 0.1);
+    p.integration.outputInterval_s = d.chance(0.05) ? d.logUniform(1e-12, 1e6) : d.logUniform(1e-5, 0.1);
     const double T = 1.0 / p.drive.frequency_Hz;
     const double mode = d.uniform(0.0, 1.0);
     if (mode < 0.82) p.integration.dt_s = T / d.logUniform(8.0, 10000.0);   // resolving the forcing
@@ -211,6 +211,20 @@ private slots:
         const RunResult ok = simulate(p, {}, &h);
         QVERIFY2(ok.ok(), ok.message.c_str());
         QCOMPARE(ok.samples.size(), size_t(101));
+    }
+
+    // outputInterval/dt beyond any integer (1e300 / 1e-300 = inf) converts to the budget, not
+    // an undefined huge long.
+    void outputEveryClampedForAbsurdRatios() {
+        IntegrationParams ip;
+        ip.dt_s = 1e-300;
+        ip.outputInterval_s = 1e300;
+        QCOMPARE(ip.outputEvery(), ip.maxSteps);
+        ip.maxSteps = 1000;
+        ip.outputInterval_s = 1e-290;  // 1e10 steps per output sample
+        QCOMPARE(ip.outputEvery(), 1000L);
+        ip.outputInterval_s = 5e-298;
+        QCOMPARE(ip.outputEvery(), 500L);
     }
 
     void randomParameterSets() {
