@@ -1,5 +1,6 @@
 #include "params.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -87,12 +88,15 @@ ParamIssues IntegrationParams::validate() const {
     ParamIssues out;
     requirePositive(out, "dt", dt_s);
     requirePositive(out, "output_every", outputInterval_s);
+    if (maxSteps < 1) out.push_back({"max_steps", static_cast<double>(maxSteps), ">= 1"});
     return out;
 }
 long IntegrationParams::outputEvery() const {
     if (!(dt_s > 0.0) || !(outputInterval_s > 0.0)) return 1;
     const double n = std::round(outputInterval_s / dt_s);
-    return n < 1.0 ? 1L : static_cast<long>(n);
+    // Beyond maxSteps no output sample but the first would be written anyway; the clamp
+    // keeps the conversion defined for absurd ratios.
+    return n < 1.0 ? 1L : n > static_cast<double>(maxSteps) ? std::max(1L, maxSteps) : static_cast<long>(n);
 }
 
 ParamIssues SimParams::validate() const {
@@ -108,6 +112,19 @@ ParamIssues SimParams::validate() const {
     if (integration.dt_s > 0.0 && drive.frequency_Hz > 0.0 && integration.dt_s > drive.period() / 8.0)
         out.push_back({"dt", integration.dt_s, "<= T/8 = " + std::to_string(drive.period() / 8.0) + " s"});
     return out;
+}
+
+std::string stepBudgetProblem(double steps, long maxSteps) {
+    if (steps <= static_cast<double>(maxSteps)) return {};
+    std::ostringstream s;
+    s.precision(6);
+    s << "step budget exceeded: the run needs " << steps << " steps, more than max_steps = "
+      << static_cast<double>(maxSteps) << "; use a larger dt or a shorter run";
+    return s.str();
+}
+
+double harmonicRunSteps(const SimParams& p) {
+    return (p.transientCycles + p.cycles) * p.drive.period() / p.integration.dt_s;
 }
 
 const char* toString(LawKind k) { return k == LawKind::RateState ? "rate-state" : "coulomb"; }

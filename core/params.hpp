@@ -65,6 +65,10 @@ struct CoulombParams {
 struct IntegrationParams {
     double dt_s = 1.0 / 30000.0;            // time step [s] (T/10 000 at 3 Hz)
     double outputInterval_s = 5.0e-4;       // output sample spacing [s]; rounded to a multiple of dt
+    // Step budget of one run (transient + recorded steps): a run that would need more fails
+    // before its first step with "step budget exceeded: …", so no parameter set (a tiny dt,
+    // a huge cycle count) can stall a worker. The default is 10 000× a default 20-cycle run.
+    long maxSteps = 2'000'000'000;
     ParamIssues validate() const;
     // Number of steps between output samples (≥ 1).
     long outputEvery() const;
@@ -91,6 +95,13 @@ struct SimParams {
     double transientCycles = 0.0;    // cycles simulated and discarded first [-]
     ParamIssues validate() const;    // all of the above, fields prefixed by nothing (keys as in the CLI)
 };
+
+// Empty when a run of `steps` time steps fits `maxSteps`, else the failure message
+// "step budget exceeded: the run needs 3e+11 steps, more than max_steps = 2e+09; ...".
+// `steps` is a double so that absurd counts (or NaN) are caught before any conversion.
+std::string stepBudgetProblem(double steps, long maxSteps);
+// Steps a harmonic run of `p` takes: (transient + cycles) T / dt.
+double harmonicRunSteps(const SimParams& p);
 
 // "tN = -1 is out of range: must be > 0; k = ..." — one line per issue.
 std::string formatIssues(const ParamIssues&);

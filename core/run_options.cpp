@@ -1,5 +1,8 @@
 #include "run_options.hpp"
 
+#include <cmath>
+#include <cstdlib>
+
 #include "io/units.hpp"
 #include "presets.hpp"
 
@@ -65,6 +68,16 @@ bool simParamsFromOptions(const SimOptions& o, SimParams& out, std::string* erro
             return false;
         }
         setParam(p, key, v);
+    }
+    if (!o.maxSteps.empty()) {
+        // Not a parameter key (run files and sessions do not carry it), so parsed here.
+        char* end = nullptr;
+        const double n = std::strtod(o.maxSteps.c_str(), &end);
+        if (end == o.maxSteps.c_str() || *end != '\0' || !(n >= 1.0 && n <= 1e18) || n != std::floor(n)) {
+            if (error) *error = "--max-steps '" + o.maxSteps + "': expected a whole number in [1, 1e+18] (time steps of one run)";
+            return false;
+        }
+        p.integration.maxSteps = static_cast<long>(n);
     }
     const ParamIssues issues = p.validate();
     if (!issues.empty()) {

@@ -25,6 +25,10 @@ void addSimOptions(CLI::App* cmd, SimOptions& o) {
     cmd->add_option("--transient", o.transient, "Forcing cycles simulated and discarded first")->type_name("N");
     cmd->add_option("--output-every", o.outputEvery, "Output sample spacing [s] (rounded to a multiple of dt)")
         ->type_name("S");
+    cmd->add_option("--max-steps", o.maxSteps,
+                    "Step budget of one run (transient + recorded steps); a run that needs more fails at once "
+                    "(default 2e9)")
+        ->type_name("N");
 }
 
 int buildSimParams(const SimOptions& o, SimParams& out, std::string* error) {

@@ -139,6 +139,12 @@ RunResult simulateDynamics(const SimParams& p, const RunControl& ctl) {
         r.message = formatIssues(issues);
         return r;
     }
+    if (std::string why = stepBudgetProblem(harmonicRunSteps(p), p.integration.maxSteps); !why.empty()) {
+        RunResult r;
+        r.status = RunStatus::Failed;
+        r.message = why;
+        return r;
+    }
     const DynamicsModel m = DynamicsModel::fromParams(p);
     DynState s = m.initialState(0.0);
     const double T = p.drive.period();

@@ -16,14 +16,26 @@ RunResult simulate(const SimParams& p, const RunControl& ctl, const SlipHistory*
         r.message = formatIssues(issues);
         return r;
     }
+    auto overBudget = [](const std::string& why) {
+        RunResult r;
+        r.status = RunStatus::Failed;
+        r.message = why;
+        return r;
+    };
     const FrictionLaw law = makeLaw(p);
     if (history) {
         const double dtIn = (history->t_s.size() > 1) ? (history->t_s.back() - history->t_s.front()) /
                                                             static_cast<double>(history->t_s.size() - 1)
                                                       : p.integration.dt_s;
-        const int sub = std::max(1, static_cast<int>(std::ceil(dtIn / p.integration.dt_s - 1e-9)));
+        const double subSteps = std::max(1.0, std::ceil(dtIn / p.integration.dt_s - 1e-9));
+        const double intervals = history->t_s.empty() ? 0.0 : static_cast<double>(history->t_s.size() - 1);
+        if (std::string why = stepBudgetProblem(subSteps * intervals, p.integration.maxSteps); !why.empty())
+            return overBudget(why);
+        const int sub = subSteps < 2147483647.0 ? static_cast<int>(subSteps) : 2147483647;
         return simulatePrescribed(law, p.rig.normalForce_N, *history, sub, ctl);
     }
+    if (std::string why = stepBudgetProblem(harmonicRunSteps(p), p.integration.maxSteps); !why.empty())
+        return overBudget(why);
     // Harmonic slip g = A sin(ωt + φ), evaluated exactly at every step (not interpolated
     // between output samples: decimating the output must not change the model).
     const long every = p.integration.outputEvery();

@@ -37,6 +37,11 @@ int CsvTable::column(const std::string& name) const {
     return -1;
 }
 
+long CsvTable::cellColumn(size_t row, size_t col) const {
+    const size_t k = row * header.size() + col;
+    return col < header.size() && k < cellColumns.size() ? cellColumns[k] : 0;
+}
+
 size_t CsvTable::rows() const { return columns.empty() ? 0 : columns.front().size(); }
 
 namespace {
@@ -224,6 +229,7 @@ bool parseCsvTable(const std::string& text, const std::string& nameForErrors, Cs
             if (!parseNumber(cell, v, why))
                 return fail(lineNo, col, why + " in column '" + t.header[j] + "'");
             t.columns[j].push_back(v);
+            t.cellColumns.push_back(col <= INT32_MAX ? static_cast<std::int32_t>(col) : 0);
         }
         t.rowLines.push_back(lineNo);
     }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,12 @@ struct CsvTable {
     char delimiter = ',';
     long headerLine = 0;                        // 1-based source line of the header
     std::vector<long> rowLines;                 // 1-based source line of each data row
+    // 1-based character column where each cell starts, row-major (row i, column j at
+    // i * header.size() + j), so that a reader's range check can point at the cell; 32 bits
+    // (0 beyond) to add half, not all, of the values' memory.
+    std::vector<std::int32_t> cellColumns;
     int column(const std::string& name) const;  // index of the named column, -1 if absent
+    long cellColumn(size_t row, size_t col) const;  // 0 when unknown
     size_t rows() const;                        // number of data rows
 };
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "../params.hpp"
+#include "channel_ranges.hpp"
 #include "csv_table.hpp"
 #include "units.hpp"
 
@@ -19,21 +20,22 @@ struct SignalInfo {
     const char* column;
     const char* unit;
     Dimension dim;
+    Channel range;  // its physical range (channel_ranges.hpp)
 };
 
 const std::array<SignalInfo, kSignalCount>& signalTable() {
     static const std::array<SignalInfo, kSignalCount> t{{
-        {Signal::Time, "time", "time_s", "s", {0, 0, 1}},
-        {Signal::StageDisp, "stage_disp", "stage_disp_m", "m", {1, 0, 0}},
-        {Signal::SliderDisp, "slider_disp", "slider_disp_m", "m", {1, 0, 0}},
-        {Signal::Slip, "slip", "slip_m", "m", {1, 0, 0}},
-        {Signal::RelVel, "rel_vel", "rel_vel_mps", "m/s", {1, 0, -1}},
-        {Signal::StageVel, "stage_vel", "stage_vel_mps", "m/s", {1, 0, -1}},
-        {Signal::SliderVel, "slider_vel", "slider_vel_mps", "m/s", {1, 0, -1}},
-        {Signal::Friction, "friction", "friction_force_N", "N", {1, 1, -2}},
-        {Signal::Normal, "normal", "normal_force_N", "N", {1, 1, -2}},
-        {Signal::Tension, "tension", "band_tension_N", "N", {1, 1, -2}},
-        {Signal::SliderAccel, "slider_accel", "slider_accel_mps2", "m/s^2", {1, 0, -2}},
+        {Signal::Time, "time", "time_s", "s", {0, 0, 1}, Channel::Time},
+        {Signal::StageDisp, "stage_disp", "stage_disp_m", "m", {1, 0, 0}, Channel::Displacement},
+        {Signal::SliderDisp, "slider_disp", "slider_disp_m", "m", {1, 0, 0}, Channel::Displacement},
+        {Signal::Slip, "slip", "slip_m", "m", {1, 0, 0}, Channel::Displacement},
+        {Signal::RelVel, "rel_vel", "rel_vel_mps", "m/s", {1, 0, -1}, Channel::Velocity},
+        {Signal::StageVel, "stage_vel", "stage_vel_mps", "m/s", {1, 0, -1}, Channel::Velocity},
+        {Signal::SliderVel, "slider_vel", "slider_vel_mps", "m/s", {1, 0, -1}, Channel::Velocity},
+        {Signal::Friction, "friction", "friction_force_N", "N", {1, 1, -2}, Channel::Force},
+        {Signal::Normal, "normal", "normal_force_N", "N", {1, 1, -2}, Channel::NormalForce},
+        {Signal::Tension, "tension", "band_tension_N", "N", {1, 1, -2}, Channel::Force},
+        {Signal::SliderAccel, "slider_accel", "slider_accel_mps2", "m/s^2", {1, 0, -2}, Channel::Acceleration},
     }};
     return t;
 }
@@ -197,13 +199,21 @@ bool loadRun(const std::string& path, const ColumnMapping& mapping, Run& out, Da
         err = DatasetError{path, headerLine, 0, "too few data rows (" + std::to_string(t.size()) + "); need at least 8"};
         return false;
     }
-    const long tCol = table.column(run.sourceColumn[Signal::Time]) + 1;
-    for (size_t i = 1; i < t.size(); ++i)
-        if (!(t[i] > t[i - 1])) {
-            err = DatasetError{path, headerLine + static_cast<long>(i) + 1, tCol,
-                               "time does not increase (" + std::to_string(t[i - 1]) + " s then " + std::to_string(t[i]) + " s)"};
+    // Every channel read, in SI, against the one table of physical ranges; time also
+    // strictly increasing. The message shows the value as the file has it (its unit).
+    for (const SignalInfo& si : signalTable()) {
+        if (!run.has(si.s)) continue;
+        const std::string& col = run.sourceColumn[si.s];
+        const auto sc = mapping.scaleToSI.find(si.s);
+        const auto ut = mapping.unitText.find(si.s);
+        ValueProblem bad;
+        if (!checkChannel(si.range, col, run[si.s], bad, sc != mapping.scaleToSI.end() ? sc->second : 1.0,
+                          ut != mapping.unitText.end() ? ut->second : std::string())) {
+            const auto j = static_cast<size_t>(table.column(col));
+            err = DatasetError{path, table.rowLines[bad.row], table.cellColumn(bad.row, j), bad.message};
             return false;
         }
+    }
     out = std::move(run);
     return true;
 }
@@ -250,7 +260,20 @@ bool readManifest(const std::string& path, Manifest& out, DatasetError& err) {
                     err = DatasetError{path, 0, 0, "manifest run " + r["file"].get<std::string>() + ": \"" + jk + "\" is not a number"};
                     return false;
                 }
-                s[pk] = r[jk].get<double>();
+                const double v = r[jk].get<double>();
+                // The amplitude and the normal load are channels of the range table; the other
+                // settings are checked by the parameters' own validation once used.
+                const std::string key = pk;
+                ValueProblem bad;
+                bool ok = std::isfinite(v);
+                if (!ok) bad.message = std::string("\"") + jk + "\" is not finite";
+                else if (key == "A") ok = checkChannel(Channel::Displacement, jk, {v}, bad);
+                else if (key == "tN") ok = checkChannel(Channel::NormalForce, jk, {v}, bad);
+                if (!ok) {
+                    err = DatasetError{path, 0, 0, "manifest run " + r["file"].get<std::string>() + ": " + bad.message};
+                    return false;
+                }
+                s[pk] = v;
             }
         m.runs[baseName(r["file"].get<std::string>())] = s;
         ++idx;

@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "../version.hpp"
+#include "channel_ranges.hpp"
 #include "units.hpp"
 #include "atomic_file.hpp"
 
@@ -195,32 +196,38 @@ bool slipHistoryFromTable(const CsvTable& t, SlipHistory& out, CsvError& err) {
                     "needs one of the columns 'rel_disp_m', 'stage_disp_m' or 'rel_vel_mps' (columns: " + names + ")");
     if (t.rows() < 2) return fail(t.headerLine, 1, "a slip history needs at least two data rows");
 
-    // Column of the time cell is known exactly only when time is the first column.
-    const long timeColumn = it == 0 ? 1 : 0;
-    const std::vector<double>& time = t.columns[static_cast<size_t>(it)];
-    for (size_t i = 1; i < time.size(); ++i) {
-        if (!(time[i] > time[i - 1])) {
-            char buf[200];
-            std::snprintf(buf, sizeof buf, "time_s must increase: %.10g after %.10g", time[i], time[i - 1]);
-            return fail(t.rowLines[i], timeColumn, buf);
-        }
-    }
+    // Every column the history uses, against the one table of physical ranges
+    // (channel_ranges.hpp); time also strictly increasing.
+    auto check = [&](int j, Channel c) {
+        if (j < 0) return true;
+        ValueProblem bad;
+        const auto col = static_cast<size_t>(j);
+        if (checkChannel(c, t.header[col], t.columns[col], bad)) return true;
+        return fail(t.rowLines[bad.row], t.cellColumn(bad.row, col), bad.message);
+    };
+    if (!check(it, Channel::Time) || !check(ig, Channel::Displacement) || !check(iu, Channel::Displacement) ||
+        !check(iv, Channel::Velocity) || !check(in, Channel::NormalForce))
+        return false;
     if (in >= 0) {
         const std::vector<double>& tn = t.columns[static_cast<size_t>(in)];
         for (size_t i = 0; i < tn.size(); ++i)
             if (!(tn[i] > 0.0)) {
                 char buf[200];
                 std::snprintf(buf, sizeof buf, "normal_force_N must be > 0, is %.10g", tn[i]);
-                return fail(t.rowLines[i], 0, buf);
+                return fail(t.rowLines[i], t.cellColumn(i, static_cast<size_t>(in)), buf);
             }
     }
 
     SlipHistory h;
     if (ig >= 0 || iu >= 0) {
-        h = SlipHistory::fromSlip(time, t.columns[static_cast<size_t>(ig >= 0 ? ig : iu)]);
+        h = SlipHistory::fromSlip(t.columns[static_cast<size_t>(it)], t.columns[static_cast<size_t>(ig >= 0 ? ig : iu)]);
         if (iv >= 0) h.velocity_mps = t.columns[static_cast<size_t>(iv)];
     } else {
-        h = SlipHistory::fromVelocity(time, t.columns[static_cast<size_t>(iv)], 0.0);
+        h = SlipHistory::fromVelocity(t.columns[static_cast<size_t>(it)], t.columns[static_cast<size_t>(iv)], 0.0);
+        // Velocities and times in range can still integrate to a slip out of range.
+        ValueProblem bad;
+        if (!checkChannel(Channel::Displacement, "slip integrated from rel_vel_mps", h.slip_m, bad))
+            return fail(t.rowLines[bad.row], t.cellColumn(bad.row, static_cast<size_t>(iv)), bad.message);
     }
     if (in >= 0) h.normalForce_N = t.columns[static_cast<size_t>(in)];
     const std::string problem = h.check();

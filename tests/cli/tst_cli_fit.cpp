@@ -239,6 +239,28 @@ private slots:
         QVERIFY(r.exitCode != 0);
         QVERIFY2(r.err.contains("--model") && r.err.contains("magic"), r.err.constData());
     }
+
+    // Measured data beyond the physical ranges (core/io/channel_ranges.hpp) is refused by the
+    // reader for fit and identify alike: exit 3, file:line:column, the value as written, the range.
+    void outOfRangeDataExit3() {
+        QTemporaryDir dir;
+        const QString bad = dir.filePath("huge.csv");
+        std::string text = "time_s,stage_disp_m,friction_force_N\n";
+        for (int i = 0; i < 10; ++i) text += std::to_string(i) + ",1e-4," + (i == 6 ? "5e6" : "1.5") + "\n";
+        writeText(bad, text);
+        for (const char* cmd : {"fit", "identify"}) {
+            const QString rep = dir.filePath(QString(cmd) + ".json");
+            const Result r = runCli({cmd, "--data", bad, "--report", rep});
+            QVERIFY2(r.exitCode == 3, r.err.constData());
+            QVERIFY2(r.err.contains((bad + ":8:8: friction_force_N = 5e+06 N is outside the allowed range [-1e+06, 1e+06] N").toUtf8()),
+                     r.err.constData());
+            QVERIFY(!QFile::exists(rep));
+        }
+        // The same file with the force in mN is fine as far as the ranges go (5e6 mN = 5 kN).
+        const Result mN = runCli({"fit", "--data", bad, "--units", "friction=mN", "--setup", "prescribed", "--free", "mu",
+                                  "--multistarts", "1", "--max-iterations", "1", "--report", dir.filePath("mN.json")});
+        QVERIFY2(!mN.err.contains("allowed range"), mN.err.constData());
+    }
 };
 
 // A longer per-function watchdog than Qt's default 300 s: each fit takes tens of seconds of CPU,

@@ -189,6 +189,47 @@ private slots:
         QVERIFY2(noColumn.err.contains("rel_disp_m"), noColumn.err.constData());
     }
 
+    // Absurd values in an input history are rejected by the reader (file:line:column, the
+    // value and the allowed range, exit 3), not later by the return map (exit 4).
+    void absurdInputValuesExit3() {
+        QTemporaryDir dir;
+        const QString in = dir.filePath("absurd.csv");
+        writeText(in, "# slip history\ntime_s,rel_disp_m\n0,0\n0.001,1e-6\n0.002,1e300\n0.003,2e-6\n");
+        const QString out = dir.filePath("o.csv");
+        const Result r = runCli({"simulate", "--setup", "prescribed", "--input", in, "--out", out});
+        QCOMPARE(r.exitCode, 3);
+        QVERIFY2(r.err.contains((in + ":5:7:").toUtf8()), r.err.constData());
+        QVERIFY2(r.err.contains("1e+300"), r.err.constData());
+        QVERIFY2(r.err.contains("[-10, 10] m"), r.err.constData());
+        QVERIFY2(!r.err.contains("return mapping"), r.err.constData());
+        QVERIFY(!QFile::exists(out));
+
+        writeText(in, "time_s,rel_disp_m\n0,0\n0.001,1e-6\n0.001,2e-6\n");
+        const Result dup = runCli({"simulate", "--input", in, "--out", out});
+        QCOMPARE(dup.exitCode, 3);
+        QVERIFY2(dup.err.contains((in + ":4:1:").toUtf8()), dup.err.constData());
+        QVERIFY2(dup.err.contains("increas"), dup.err.constData());
+
+        writeText(in, "time_s,rel_vel_mps,normal_force_N\n0,0.01,5\n0.001,0.01,5\n0.002,0.01,2e7\n");
+        const Result force = runCli({"simulate", "--input", in, "--out", out});
+        QCOMPARE(force.exitCode, 3);
+        QVERIFY2(force.err.contains((in + ":4:12:").toUtf8()), force.err.constData());
+        QVERIFY2(force.err.contains("2e+07"), force.err.constData());
+    }
+
+    // A run that needs more steps than --max-steps fails at once with a clear message (exit 4).
+    void stepBudgetExit4() {
+        const Result r = runCli({"simulate", "--dt", "1e-9", "--cycles", "100", "--max-steps", "1000000", "--out", "-"});
+        QCOMPARE(r.exitCode, 4);
+        QVERIFY2(r.err.contains("step budget exceeded: the run needs 3.33333e+10 steps, more than max_steps = 1e+06"),
+                 r.err.constData());
+        const Result bad = runCli({"simulate", "--max-steps", "0", "--out", "-"});
+        QCOMPARE(bad.exitCode, 2);
+        QVERIFY2(bad.err.contains("--max-steps '0'"), bad.err.constData());
+        const Result ok = runCli({"simulate", "--cycles", "1", "--max-steps", "10001", "--out", "-"});
+        QVERIFY2(ok.exitCode == 0, ok.err.constData());
+    }
+
     // A velocity history V = const read from a file drives the block into steady sliding;
     // the CLI output equals the core run on the same history and ends at Eq. 5.
     void prescribedFromInput() {

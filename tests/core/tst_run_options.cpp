@@ -51,6 +51,27 @@ private slots:
         QVERIFY(err.find("dynamics, prescribed") != std::string::npos);
     }
 
+    // --max-steps sets the per-run step budget: a whole number >= 1, named in the error.
+    void maxStepsOption() {
+        SimParams p;
+        std::string err;
+        SimOptions o;
+        QVERIFY2(simParamsFromOptions(o, p, &err), err.c_str());
+        QCOMPARE(p.integration.maxSteps, SimParams{}.integration.maxSteps);
+        o.maxSteps = "5000";
+        QVERIFY2(simParamsFromOptions(o, p, &err), err.c_str());
+        QCOMPARE(p.integration.maxSteps, 5000L);
+        o.maxSteps = "1e12";
+        QVERIFY2(simParamsFromOptions(o, p, &err), err.c_str());
+        QCOMPARE(p.integration.maxSteps, 1000000000000L);
+        for (const char* bad : {"0", "-3", "2.5", "abc", "1e30", "nan", "10 steps"}) {
+            o.maxSteps = bad;
+            QVERIFY2(!simParamsFromOptions(o, p, &err), bad);
+            QVERIFY2(err.find(std::string("--max-steps '") + bad + "'") != std::string::npos, err.c_str());
+            QVERIFY2(err.find("whole number in [1, 1e+18]") != std::string::npos, err.c_str());
+        }
+    }
+
     void parseAssignmentSplits() {
         std::string key;
         double v = 0;

@@ -273,6 +273,31 @@ private slots:
         QVERIFY2(d.isValid(), qPrintable(d.errorText()));
     }
 
+    // A value beyond the physical ranges (core/io/channel_ranges.hpp) is refused by the core
+    // reader the dialog loads through: nothing loads and the dialog shows the core's message.
+    void outOfRangeValueRefusedWithTheCoreMessage() {
+        QTemporaryDir dir;
+        const QString path = dir.filePath("huge.csv");
+        std::string text = "time_s,stage_disp_m,friction_force_N\n";
+        for (int i = 0; i < 10; ++i) text += std::to_string(i * 0.001) + ",1e-4," + (i == 6 ? "5e6" : "0.5") + "\n";
+        writeText(path, text);
+        io::Run run;
+        io::DatasetError err;
+        QVERIFY(!io::loadRun(path.toStdString(), io::ColumnMapping{}, run, err));
+        QVERIFY2(err.what().find("allowed range") != std::string::npos, err.what().c_str());
+
+        ImportDialog d({path});
+        QVERIFY(waitIdle(d));
+        if (d.isValid()) {  // the dialog's own checks pass; loading refuses the file
+            QSignalSpy failed(&d, &ImportDialog::loadFailed);
+            d.accept();
+            QTRY_COMPARE_WITH_TIMEOUT(failed.count(), 1, 30000);
+        }
+        QVERIFY(d.result() != QDialog::Accepted);
+        QVERIFY(d.dataset().runs.empty());
+        QCOMPARE(d.errorText(), QString::fromStdString(err.what()));
+    }
+
     void unknownColumnAndBadTimeWordedAsTheCore() {
         QTemporaryDir dir;
         const QString path = dir.filePath("backwards.csv");
