@@ -60,6 +60,12 @@ private slots:
         QVERIFY(out.report.contains("preprocessing") && out.report.contains("prediction"));
         QCOMPARE(out.report["validation"].get<std::string>(), std::string("none"));
         QCOMPARE(out.report["preprocessing"]["runs"].size(), size_t(1));
+        // The outcome of an earlier request is replaced, not appended to (the sanitizer pass
+        // found the second call reading the runs of the first: a heap-buffer-overflow).
+        QVERIFY2(runFitRequest(req, out, st), st.message.c_str());
+        QCOMPARE(out.fitRuns.size(), size_t(1));
+        QCOMPARE(out.fits.size(), size_t(1));
+        QCOMPARE(out.report["preprocessing"]["runs"].size(), size_t(1));
         req.model = "stribeck";
         QVERIFY(!runFitRequest(req, out, st));
         QVERIFY(st.code == PipelineCode::BadArguments);
