@@ -150,6 +150,7 @@ bool loadMeasuredInputs(const MeasuredInputs& o, io::Dataset& fitData, io::Datas
 }
 
 bool runFitRequest(const FitRequest& o, FitOutcome& out, PipelineStatus& status) {
+    out = FitOutcome{};  // cleanRuns appends; runSummary pairs out.fitRuns[i] with fitData.runs[i]
     io::Dataset fitData, valData;
     if (!loadMeasuredInputs(o.in, fitData, valData, out.setup, status)) return false;
     const PreprocessSettings pre = o.cleaning.effective();
