@@ -150,6 +150,19 @@ private slots:
         QVERIFY(parseQuantity("1 m^2/s", q, &err));
         QCOMPARE(dimensionString(q.dimension), std::string("m^2/s"));
     }
+
+    // Found by fuzz/fuzz_units: a huge exponent overflowed the int dimension (UB).
+    void hugeExponentsAreRejected() {
+        Quantity q;
+        std::string err;
+        QVERIFY(parseQuantity("1 m^9 s^-9", q, &err));
+        QCOMPARE(q.dimension, (Dimension{9, 0, -9}));
+        for (const char* text : {"1 mN00001857608177", "1 m^10", "1 s^-10", "1 m^2147483647", "1 kg^-2147483648"}) {
+            err.clear();
+            QVERIFY2(!parseQuantity(text, q, &err), text);
+            QVERIFY2(err.find("exponent") != std::string::npos && err.find("-9 to 9") != std::string::npos, err.c_str());
+        }
+    }
 };
 
 QTEST_GUILESS_MAIN(TstUnits)
