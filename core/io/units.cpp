@@ -17,6 +17,7 @@ struct Atom {
     bool prefixable;
 };
 
+constexpr int kMaxExponent = 9;                    // |exponent| of one unit atom
 constexpr double kInch = 0.0254;                    // m
 constexpr double kFoot = 0.3048;                    // m
 constexpr double kPoundMass = 0.45359237;           // kg
@@ -157,8 +158,14 @@ bool parseUnit(const std::string& u, std::vector<Term>& terms, std::string& why)
             if (u[i] == '^') ++i;
             const char* b = u.data() + i;
             const auto [ptr, ec] = std::from_chars(b, u.data() + u.size(), exponent);
-            if (ec != std::errc()) {
+            if (ec == std::errc::invalid_argument) {
                 why = "bad exponent in unit";
+                return false;
+            }
+            // No physical unit needs more; a bound keeps the int dimension sums from overflowing.
+            if (ec != std::errc() || exponent < -kMaxExponent || exponent > kMaxExponent) {
+                why = "exponent " + std::string(b, ptr) + " in unit is out of range: allowed -" +
+                      std::to_string(kMaxExponent) + " to " + std::to_string(kMaxExponent);
                 return false;
             }
             i += static_cast<size_t>(ptr - b);
