@@ -173,6 +173,19 @@ private slots:
         QVERIFY(!parseManifest(R"({"runs": [{"file": "a.csv", "f_Hz": "4"}]})", "mem.json", m, err));
         QVERIFY(err.message.find("f_Hz") != std::string::npos);
     }
+
+    // Found by fuzz/fuzz_manifest: a number beyond the double range made nlohmann throw
+    // out_of_range, which escaped readManifest and terminated the program.
+    void manifestNumberOverflowIsAnError() {
+        Manifest m;
+        DatasetError err;
+        QVERIFY(!parseManifest(R"({"runs": [{"file": "a.csv", "k_N_per_m": 1e999}]})", "mem.json", m, err));
+        QCOMPARE(err.file, std::string("mem.json"));
+        QVERIFY2(err.message.find("1e999") != std::string::npos, err.message.c_str());
+        const std::string f = writeTemp("fuzz_manifest_overflow.json", "{\"runs\": [{\"file\": \"a.csv\", \"A_m\": -1e999}]}");
+        QVERIFY(!readManifest(f, m, err));
+        QVERIFY2(err.message.find("-1e999") != std::string::npos, err.message.c_str());
+    }
 };
 
 QTEST_GUILESS_MAIN(TstDataset)
