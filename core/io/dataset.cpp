@@ -230,6 +230,10 @@ bool parseManifest(const std::string& text, const std::string& path, Manifest& o
         }
         err = DatasetError{path, line, col, std::string("invalid JSON: ") + e.what()};
         return false;
+    } catch (const nlohmann::json::exception& e) {
+        // A number beyond the double range ("1e999") is out_of_range, without a byte offset.
+        err = DatasetError{path, 0, 0, std::string("invalid JSON: ") + e.what()};
+        return false;
     }
     Manifest m;
     m.path = path;
