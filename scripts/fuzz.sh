@@ -53,8 +53,8 @@ status=0
 printf '%-10s %12s %8s %8s %10s %9s\n' target executions exec/s cov corpus findings
 for t in "${TARGETS[@]}"; do
   log="$B/logs/$t.log"
-  execs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | awk '{print $2}' | tail -1)
-  rate=$(grep -o 'stat::average_exec_per_sec: [0-9]*' "$log" | awk '{print $2}' | tail -1)
+  execs=$(grep -oE 'stat::number_of_executed_units: *[0-9]+' "$log" | awk '{print $2}' | tail -1)
+  rate=$(grep -oE 'stat::average_exec_per_sec: *[0-9]+' "$log" | awk '{print $2}' | tail -1)
   cov=$(grep -oE 'cov: [0-9]+' "$log" | tail -1 | awk '{print $2}')
   corp=$(ls "$B/corpus/$t" | wc -l)
   found=$(ls "$B/findings/$t" | wc -l)
