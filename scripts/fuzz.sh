@@ -19,12 +19,13 @@ if ! command -v clang++ >/dev/null; then
   apt-get install -y clang || { echo "fuzz.sh: clang++ not found and could not be installed" >&2; exit 2; }
 fi
 
+mkdir -p "$B"
 export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(dirname "$ROOT")}"
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S "$ROOT" -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DSTICKSLIP_FUZZ=ON \
   -DSTICKSLIP_BUILD_PYTHON=OFF -DSTICKSLIP_BUILD_BENCH=OFF -DBUILD_TESTING=OFF -DSTICKSLIP_WITH_MPI=OFF \
-  "${launcher[@]}" >"$B.configure.log" 2>&1 || { cat "$B.configure.log"; exit 2; }
+  "${launcher[@]}" >"$B/configure.log" 2>&1 || { cat "$B/configure.log"; exit 2; }
 cmake --build "$B" -j"$JOBS" --target "${TARGETS[@]/#/fuzz_}" || exit 2
 
 mkdir -p "$B/logs"
