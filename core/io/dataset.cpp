@@ -219,23 +219,30 @@ bool loadRun(const std::string& path, const ColumnMapping& mapping, Run& out, Da
 }
 
 bool readManifest(const std::string& path, Manifest& out, DatasetError& err) {
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     if (!in) {
         err = DatasetError{path, 0, 0, "cannot open manifest"};
         return false;
     }
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return parseManifest(text, path, out, err);
+}
+
+bool parseManifest(const std::string& text, const std::string& path, Manifest& out, DatasetError& err) {
     nlohmann::json j;
     try {
-        in >> j;
+        j = nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
         // nlohmann reports a byte offset; turn it into line and column.
-        std::ifstream again(path);
-        std::string text((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
         long line = 1, col = 1;
         for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
             if (text[i] == '\n') { ++line; col = 1; } else ++col;
         }
         err = DatasetError{path, line, col, std::string("invalid JSON: ") + e.what()};
+        return false;
+    } catch (const nlohmann::json::exception& e) {
+        // A number beyond the double range ("1e999") is out_of_range, without a byte offset.
+        err = DatasetError{path, 0, 0, std::string("invalid JSON: ") + e.what()};
         return false;
     }
     Manifest m;

@@ -85,6 +85,8 @@ struct Manifest {
     std::map<std::string, double> common;                       // e.g. {"m": nominal mass}
 };
 bool readManifest(const std::string& path, Manifest& out, DatasetError& err);
+// The same from the manifest's text; `path` is the name used in errors and Manifest::path.
+bool parseManifest(const std::string& text, const std::string& path, Manifest& out, DatasetError& err);
 
 struct Dataset {
     std::vector<Run> runs;

@@ -1,5 +1,6 @@
 #include "units.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <numbers>
@@ -17,6 +18,7 @@ struct Atom {
     bool prefixable;
 };
 
+constexpr int kMaxExponent = 9;                    // |exponent| of one unit atom
 constexpr double kInch = 0.0254;                    // m
 constexpr double kFoot = 0.3048;                    // m
 constexpr double kPoundMass = 0.45359237;           // kg
@@ -78,24 +80,35 @@ bool matchAtom(std::string_view s, Term& t) {
 
 // A run of letters is one atom ("mN", "kg", "Hz") or, failing that, a product of atoms
 // ("Ns" = N·s). Whole-run matches win, so "ms" is a millisecond, not a metre-second.
-bool splitLetters(std::string_view s, std::vector<Term>& out) {
-    if (s.empty()) return true;
+// Longest atom spelling with a prefix ("mrad", "klbf" is not prefixable): longer heads never match.
+constexpr size_t kMaxAtomLength = 4;
+
+// `failed[i]`: s.substr(i) is known not to split, so each suffix is tried once (linear time;
+// trying every split again was exponential in the length of the run).
+bool splitLettersFrom(std::string_view s, size_t from, std::vector<char>& failed, std::vector<Term>& out) {
+    if (from == s.size()) return true;
+    if (failed[from]) return false;
+    const std::string_view rest = s.substr(from);
     Term t;
-    if (matchAtom(s, t)) {
+    if (matchAtom(rest, t)) {
         out.push_back(t);
         return true;
     }
-    for (size_t n = s.size() - 1; n >= 1; --n) {
+    for (size_t n = std::min(rest.size() - 1, kMaxAtomLength); n >= 1; --n) {
         Term head;
-        if (!matchAtom(s.substr(0, n), head)) continue;
-        std::vector<Term> rest;
-        if (splitLetters(s.substr(n), rest)) {
-            out.push_back(head);
-            out.insert(out.end(), rest.begin(), rest.end());
-            return true;
-        }
+        if (!matchAtom(rest.substr(0, n), head)) continue;
+        const size_t mark = out.size();
+        out.push_back(head);
+        if (splitLettersFrom(s, from + n, failed, out)) return true;
+        out.resize(mark);
     }
+    failed[from] = 1;
     return false;
+}
+
+bool splitLetters(std::string_view s, std::vector<Term>& out) {
+    std::vector<char> failed(s.size() + 1, 0);
+    return splitLettersFrom(s, 0, failed, out);
 }
 
 // Normalises the UTF-8 spellings: µ (U+00B5) and μ (U+03BC) -> u, · (U+00B7) -> *.
@@ -157,8 +170,14 @@ bool parseUnit(const std::string& u, std::vector<Term>& terms, std::string& why)
             if (u[i] == '^') ++i;
             const char* b = u.data() + i;
             const auto [ptr, ec] = std::from_chars(b, u.data() + u.size(), exponent);
-            if (ec != std::errc()) {
+            if (ec == std::errc::invalid_argument) {
                 why = "bad exponent in unit";
+                return false;
+            }
+            // No physical unit needs more; a bound keeps the int dimension sums from overflowing.
+            if (ec != std::errc() || exponent < -kMaxExponent || exponent > kMaxExponent) {
+                why = "exponent " + std::string(b, ptr) + " in unit is out of range: allowed -" +
+                      std::to_string(kMaxExponent) + " to " + std::to_string(kMaxExponent);
                 return false;
             }
             i += static_cast<size_t>(ptr - b);

@@ -156,6 +156,36 @@ private slots:
         QCOMPARE(err.line, 3L);
         QVERIFY(err.column > 1);
     }
+
+    void manifestParsesFromText() {
+        Manifest m;
+        DatasetError err;
+        const std::string text = R"({"nominal_mass_kg": 0.53, "runs": [{"file": "sub/run_01.csv", "k_N_per_m": 1547, "A_m": 0.0026}]})";
+        QVERIFY2(parseManifest(text, "mem.json", m, err), err.what().c_str());
+        QCOMPARE(m.path, std::string("mem.json"));
+        QCOMPARE(m.common.at("m"), 0.53);
+        QCOMPARE(m.runs.at("run_01.csv").at("k"), 1547.0);
+        QCOMPARE(m.runs.at("run_01.csv").at("A"), 0.0026);
+        // Errors name the given path; trailing text after the JSON value is malformed too.
+        QVERIFY(!parseManifest(R"({"runs": []} x)", "mem.json", m, err));
+        QCOMPARE(err.file, std::string("mem.json"));
+        QCOMPARE(err.line, 1L);
+        QVERIFY(!parseManifest(R"({"runs": [{"file": "a.csv", "f_Hz": "4"}]})", "mem.json", m, err));
+        QVERIFY(err.message.find("f_Hz") != std::string::npos);
+    }
+
+    // Found by fuzz/fuzz_manifest: a number beyond the double range made nlohmann throw
+    // out_of_range, which escaped readManifest and terminated the program.
+    void manifestNumberOverflowIsAnError() {
+        Manifest m;
+        DatasetError err;
+        QVERIFY(!parseManifest(R"({"runs": [{"file": "a.csv", "k_N_per_m": 1e999}]})", "mem.json", m, err));
+        QCOMPARE(err.file, std::string("mem.json"));
+        QVERIFY2(err.message.find("1e999") != std::string::npos, err.message.c_str());
+        const std::string f = writeTemp("fuzz_manifest_overflow.json", "{\"runs\": [{\"file\": \"a.csv\", \"A_m\": -1e999}]}");
+        QVERIFY(!readManifest(f, m, err));
+        QVERIFY2(err.message.find("-1e999") != std::string::npos, err.message.c_str());
+    }
 };
 
 QTEST_GUILESS_MAIN(TstDataset)

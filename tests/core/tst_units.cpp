@@ -150,6 +150,33 @@ private slots:
         QVERIFY(parseQuantity("1 m^2/s", q, &err));
         QCOMPARE(dimensionString(q.dimension), std::string("m^2/s"));
     }
+
+    // Found by fuzz/fuzz_units: a huge exponent overflowed the int dimension (UB).
+    void hugeExponentsAreRejected() {
+        Quantity q;
+        std::string err;
+        QVERIFY(parseQuantity("1 m^9 s^-9", q, &err));
+        QCOMPARE(q.dimension, (Dimension{9, 0, -9}));
+        for (const char* text : {"1 mN00001857608177", "1 m^10", "1 s^-10", "1 m^2147483647", "1 kg^-2147483648"}) {
+            err.clear();
+            QVERIFY2(!parseQuantity(text, q, &err), text);
+            QVERIFY2(err.find("exponent") != std::string::npos && err.find("-9 to 9") != std::string::npos, err.c_str());
+        }
+    }
+
+    // Found by fuzz/fuzz_units (a 10 s timeout): splitting a long run of letters into unit atoms
+    // tried every split (exponential); these returned only after minutes or never.
+    void longLetterRunsSplitInLinearTime() {
+        Quantity q;
+        std::string err;
+        QVERIFY(!parseQuantity("3 " + std::string(200, 'm') + "e", q, &err));
+        QVERIFY2(err.find("unknown unit") != std::string::npos, err.c_str());
+        QVERIFY(parseQuantity("3 " + std::string(60, 'm'), q, &err));  // mm·mm·…: (1e-3 m)^30
+        QCOMPARE(q.dimension, (Dimension{30, 0, 0}));
+        QVERIFY(parseQuantity("2 Nms", q, &err));  // N·ms, the longest head first
+        QCOMPARE(q.dimension, (Dimension{1, 1, -1}));
+        QCOMPARE(q.valueSI, 2e-3);
+    }
 };
 
 QTEST_GUILESS_MAIN(TstUnits)
