@@ -10,7 +10,7 @@ STICKSLIP_DEB_PACKAGES=(
   libgtest-dev libbenchmark-dev
   pybind11-dev python3-numpy python3-pytest python3-matplotlib
   libopenmpi-dev openmpi-bin
-  xvfb xauth
+  xvfb xauth desktop-file-utils
 )
 
 stickslip_install_deps() {
