@@ -59,15 +59,20 @@ class TstCliCancel : public QObject {
     QTemporaryDir dir;
     QString at(const QString& name) const { return dir.filePath(name); }
 
+    // Starts the CLI with `args` and the hook that holds its first atomic write half done.
+    static void startStalled(QProcess& p, const QStringList& args) {
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.insert("STICKSLIP_TEST_STALL_WRITE", "60");
+        p.setProcessEnvironment(env);
+        p.start(QStringLiteral(STICKSLIP_CLI), args);
+    }
+
     // Starts `args` with the stall hook, kills it mid-write, checks the previous `target`.
     void killMidWrite(const QStringList& args, const QString& target) {
         const QByteArray previous = "# the previous file, complete\n1,2,3\n";
         writeText(target, previous);
         QProcess p;
-        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-        env.insert("STICKSLIP_TEST_STALL_WRITE", "60");
-        p.setProcessEnvironment(env);
-        p.start(QStringLiteral(STICKSLIP_CLI), args);
+        startStalled(p, args);
         QByteArray err;
         QVERIFY2(waitForStderr(p, "stalled mid-write of ", err, 600000), err.constData());
         const int at = err.indexOf("stalled mid-write of ") + int(qstrlen("stalled mid-write of "));
@@ -123,10 +128,7 @@ private slots:
         const QByteArray previous = "# previous\n";
         writeText(target, previous);
         QProcess p;
-        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-        env.insert("STICKSLIP_TEST_STALL_WRITE", "60");
-        p.setProcessEnvironment(env);
-        p.start(QStringLiteral(STICKSLIP_CLI), {"simulate", "--preset", "fig20", "--cycles", "5", "--out", target});
+        startStalled(p, {"simulate", "--preset", "fig20", "--cycles", "5", "--out", target});
         QByteArray err;
         QVERIFY2(waitForStderr(p, "stalled mid-write of ", err, 600000), err.constData());
         ::kill(static_cast<pid_t>(p.processId()), SIGINT);

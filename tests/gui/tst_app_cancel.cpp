@@ -8,24 +8,14 @@
 #include <QtTest>
 
 #include "core/presets.hpp"
+#include "model_fixtures.hpp"
 #include "simulation_controller.hpp"
 #include "sweep_dialogs.hpp"
 
 using namespace stickslip;
 using namespace stickslip::gui;
 
-namespace {
-
-ModelSettings fig20() {
-    Preset p;
-    findPreset("fig20", p);
-    ModelSettings s;
-    s.params = p.params;
-    s.preset = "fig20";
-    return s;
-}
-
-}  // namespace
+using stickslip::gui::test::fig20;
 
 class TstAppCancel : public QObject {
     Q_OBJECT

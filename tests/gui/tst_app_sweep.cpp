@@ -12,6 +12,7 @@
 
 #include "core/analysis/stick_threshold.hpp"
 #include "core/presets.hpp"
+#include "model_fixtures.hpp"
 #include "simulation_controller.hpp"
 #include "sweep_dialogs.hpp"
 #include "view_set.hpp"
@@ -21,16 +22,7 @@
 using namespace stickslip;
 using namespace stickslip::gui;
 
-namespace {
-ModelSettings fig20() {
-    Preset p;
-    findPreset("fig20", p);
-    ModelSettings s;
-    s.params = p.params;
-    s.preset = "fig20";
-    return s;
-}
-}  // namespace
+using stickslip::gui::test::fig20;
 
 class TstAppSweep : public QObject {
     Q_OBJECT
