@@ -45,7 +45,7 @@ LawState ExtendedLaw::initialState(const RunContext& ctx) const {
 // frictional_lag: the strength in Φ is the lagged Y_act (explicit exact update over the
 // step), so R is linear: Δλ = Φ_tr/(ε + η t_N/Δt). The consistent tangent is
 // dF/dΔg = ε (1 + ε/R') with R' = dR/dΔλ < 0 (0 inside the backlash play).
-ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt, double tN) const {
+ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt, double tN, ExpCache* cache) const {
     ReturnMapResult res;
     res.state = st;
     const double eps = eps_N_per_m;
@@ -60,7 +60,14 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
     const double s = trial >= 0.0 ? 1.0 : -1.0;
     const double mu = muEffective(st, s, tN);
     const double h = fx.stickHealing ? st.aux[1] : 0.0;
-    const double yLaw = tN * (mu + h + K1(st.alpha));
+    double e0 = 0.0;  // exp(α_n/r), exactly as K1 computes it
+    if (cache && st.alpha == cache->alpha) {
+        e0 = cache->e;
+    } else {
+        e0 = std::exp(st.alpha / base.r);
+        if (cache) cache->alpha = st.alpha, cache->e = e0;
+    }
+    const double yLaw = tN * (mu + h + base.C1 * (e0 - 1.0));
     const double yAct = fx.frictionalLag ? fx.frictionalLag->lagged(st.aux[2], yLaw, dt) : yLaw;
     const double phiTrial = a - yAct;
 
@@ -76,10 +83,17 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
         return res;
     }
     res.stuck = false;
-    const double visc = base.eta_s_per_m * tN / dt;  // η t_N/Δt [N/m]
-    const double invDc = 1.0 / base.Dc_m;
-    const double c2q = base.C2() * invDc / dt;
-    const double invR = 1.0 / base.r;
+    ExpCache local;
+    ExpCache& k = cache ? *cache : local;
+    if (!(k.dt == dt && k.tN == tN)) {
+        k.dt = dt;
+        k.tN = tN;
+        k.visc = base.eta_s_per_m * tN / dt;  // η t_N/Δt [N/m]
+        k.invDc = 1.0 / base.Dc_m;
+        k.c2q = base.C2() * k.invDc / dt;
+        k.invR = 1.0 / base.r;
+    }
+    const double visc = k.visc, invDc = k.invDc, c2q = k.c2q, invR = k.invR;
     auto alphaAt = [&](double x, double& dalpha) {
         const double den = 1.0 + x * invDc;
         const double al = (st.alpha - c2q * x * x) / den;
@@ -101,8 +115,11 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
             R = a - eps * xx - y0 - tN * base.C1 * (e - 1.0) - visc * xx;
             dRx = -eps - visc - tN * base.C1 * invR * e * da;
         };
-        double lo = 0.0, hi = hi0, R = 0.0;
-        eval(hi, R, dR, alpha);
+        double lo = 0.0, hi = hi0, R = -1.0;
+        // R(Δλ) <= a - y0 + t_N C1 - (ε + η t_N/Δt) Δλ since K1 >= -C1: when that bound puts the
+        // root below a/ε, R(a/ε) < 0 and the force cannot reach zero in the step (no evaluation).
+        const double rootBound = (a - y0 + tN * base.C1) / (eps + visc);
+        if (!(base.C1 >= 0.0 && rootBound * (1.0 + 1e-9) < hi0)) eval(hi, R, dR, alpha);
         if (R > 0.0) {  // slides to zero force within the step
             x = hi;
         } else {
@@ -162,6 +179,7 @@ ExtendedTrace simulateExtendedPrescribed(const ExtendedModel& m, const RunContex
     const ExtendedLaw law = ExtendedLaw::make(m);
     const double tN = ctx.normalForce_N;
     LawState s = law.initialState(ctx);
+    ExtendedLaw::ExpCache cache;
     tr.t_s = t;
     tr.slip_m = g;
     tr.relVel_mps = derivative(t, g);
@@ -183,7 +201,7 @@ ExtendedTrace simulateExtendedPrescribed(const ExtendedModel& m, const RunContex
             }
             bool stuck = true;
             for (int k = 0; k < substeps; ++k) {
-                const ReturnMapResult r = law.returnMap(s, dg, dt, tN);
+                const ReturnMapResult r = law.returnMap(s, dg, dt, tN, &cache);
                 if (!r.converged || !std::isfinite(r.state.force_N)) {
                     tr.status = RunStatus::Failed;
                     tr.message = "return mapping failed at t = " + std::to_string(t[i]) + " s";

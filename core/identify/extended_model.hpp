@@ -3,6 +3,7 @@
 // spring–mass rig (Fig. 15b, Eq. 8, reusing the Newmark stepper of integrate/dynamics.hpp).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -42,8 +43,20 @@ struct ExtendedLaw {
 
     static ExtendedLaw make(const ExtendedModel& m);
 
+    // Per-loop scratch (one per time loop, never shared between threads): the step constants
+    // of the last (Δt, t_N) and exp(α/r) of the last stuck state. A stuck step leaves α
+    // unchanged, so a run of stuck steps evaluates the exponential once.
+    struct ExpCache {
+        double alpha = std::numeric_limits<double>::quiet_NaN();
+        double e = 1.0;
+        double dt = std::numeric_limits<double>::quiet_NaN(), tN = std::numeric_limits<double>::quiet_NaN();
+        double visc = 0, invDc = 0, c2q = 0, invR = 0;
+    };
     // Backward-Euler return mapping over one step (derivation in extended_model.cpp).
-    ReturnMapResult returnMap(const LawState& s, double dg_m, double dt_s, double normalForce_N) const;
+    ReturnMapResult returnMap(const LawState& s, double dg_m, double dt_s, double normalForce_N) const {
+        return returnMap(s, dg_m, dt_s, normalForce_N, nullptr);
+    }
+    ReturnMapResult returnMap(const LawState& s, double dg_m, double dt_s, double normalForce_N, ExpCache* cache) const;
     double epsT() const { return eps_N_per_m; }
     double K1(double alpha) const;  // Eq. 1
     // μ with the load-, wear- and direction-dependent shifts for a force of sign `forceSign`.

@@ -129,12 +129,40 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
             models[pt] = buildModel(cx, spec, vals, masses[pt]);
         }
         rs.resize(points.size());
+        // Points that differ only in parameters the law run along the measured slip does not see
+        // (the Jacobian columns of m, ζ, a sensor's dashpot or mass) share one law run per run:
+        // the law runs first, one task per distinct law and run, then every point's residuals.
+        std::vector<size_t> lawOf(points.size()), distinct;
+        if (!spec.segments)
+            for (size_t pt = 0; pt < points.size(); ++pt) {
+                lawOf[pt] = pt;
+                for (size_t q : distinct) {
+                    bool same = true;
+                    for (size_t i = 0; i < names.size() && same; ++i)
+                        same = !lawParameter(names[i]) || points[q][i] == points[pt][i];
+                    if (same) { lawOf[pt] = q; break; }
+                }
+                if (lawOf[pt] == pt) distinct.push_back(pt);
+            }
+        std::vector<LawRun> laws(spec.segments ? 0 : points.size() * nRuns);
+        std::vector<char> lawOk(laws.size(), 0);
+        parallelFor(distinct.size() * nRuns, [&](size_t t) {
+            const size_t pt = distinct[t / nRuns], k = t % nRuns;
+            lawOk[pt * nRuns + k] = simulateLawRun(cx, cx.runs[idx[k]], models[pt], laws[pt * nRuns + k]) ? 1 : 0;
+        });
         std::vector<char> ok(nTasks, 0);
         parallelFor(nTasks, [&](size_t t) {
             const size_t pt = t / nRuns, k = t % nRuns;
+            const LawRun* law = nullptr;
+            if (!spec.segments) {
+                const size_t l = lawOf[pt] * nRuns + k;
+                if (!lawOk[l]) return;
+                law = &laws[l];
+            }
             std::vector<double> r;
             double ss = 0, n = 0;
-            if (!runResiduals(cx, cx.runs[idx[k]], models[pt], masses[pt], r, ss, n, nullptr, nullptr, nullptr, spec.segments))
+            if (!runResiduals(cx, cx.runs[idx[k]], models[pt], masses[pt], r, ss, n, nullptr, nullptr, nullptr, spec.segments,
+                              law))
                 return;
             std::copy(r.begin(), r.end(), rs[pt].begin() + static_cast<long>(offsets[k]));
             ok[t] = 1;

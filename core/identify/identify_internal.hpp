@@ -119,9 +119,20 @@ ExtendedModel buildModel(const Context& cx, const Spec& spec, const std::map<std
 bool segmentResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, double mass, std::vector<double>& r,
                       double& ss, double& count, std::vector<double>* predicted, std::vector<char>* used,
                       std::vector<double>* frictionResidual);
+// The contact force of the law run along the run's measured slip (what the law channel of
+// runResiduals simulates): it depends on the law and the effects that act in the contact, not on
+// the rig's m and ζ nor on the sensor's dashpot and mass (lawParameter() is false for those).
+struct LawRun {
+    std::vector<double> contactForce_N, relVel_mps, accel_mps2;
+};
+bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m, LawRun& out);
+bool lawParameter(const std::string& name);
+// Residuals of one run appended to `r` (see identify_residuals.cpp); with `law`, the law run
+// computed by simulateLawRun for a model with the same law parameters is used instead of a new
+// simulation (identical numbers).
 bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, double mass, std::vector<double>& r,
                   double& ss, double& count, std::vector<double>* predicted, std::vector<char>* used,
-                  std::vector<double>* frictionResidual, bool segments);
+                  std::vector<double>* frictionResidual, bool segments, const LawRun* law = nullptr);
 size_t residualCount(const Context& cx, const std::vector<size_t>& idx);
 bool residualVector(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                     const std::vector<size_t>& idx, std::vector<double>& r, std::vector<NoiseBlock>* blocks = nullptr);

@@ -128,22 +128,62 @@ bool segmentResiduals(const Context& cx, const Prepared& p, const ExtendedModel&
     return true;
 }
 
+bool lawParameter(const std::string& name) {
+    return !(name == "m" || name == "zeta" || name.rfind("viscous_damping.", 0) == 0 ||
+             name.rfind("sensor_inertia.", 0) == 0);
+}
+
+namespace {
+
+// The model the law channel runs: in the dynamics set-up viscous damping is a rig effect (in the
+// equation of motion), not a dashpot beside the sensor.
+ExtendedModel lawChannelModel(const Prepared& p, const ExtendedModel& m) {
+    ExtendedModel lawOnly = m;
+    if (p.run->setup == SetupKind::Dynamics) lawOnly.effects.viscousDamping.reset();
+    return lawOnly;
+}
+
+}  // namespace
+
+bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m, LawRun& out) {
+    const RunContext ctx{p.run->normalForce_N, p.run->slipBefore_m};
+    ExtendedTrace tr = simulateExtendedPrescribed(lawChannelModel(p, m), ctx, p.t, p.g, p.a.empty() ? nullptr : &p.a,
+                                                  cx.opt->substeps);
+    if (!tr.ok()) return false;
+    out.contactForce_N = std::move(tr.contactForce_N);
+    out.relVel_mps = std::move(tr.relVel_mps);
+    out.accel_mps2 = std::move(tr.sliderAccel_mps2);
+    return true;
+}
+
 bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, double mass, std::vector<double>& r,
                   double& ss, double& count, std::vector<double>* predicted, std::vector<char>* used,
-                  std::vector<double>* frictionResidual, bool segments) {
+                  std::vector<double>* frictionResidual, bool segments, const LawRun* law) {
     const IdentifyRun& run = *p.run;
-    RunContext ctx{run.normalForce_N, run.slipBefore_m};
     const size_t n = p.size();
     ss = 0;
     count = 0;
     if (predicted) predicted->assign(n, 0.0);
     if (used) used->assign(n, 0);
     if (frictionResidual) frictionResidual->assign(n, 0.0);
+    if (segments && run.setup == SetupKind::Dynamics)
+        return segmentResiduals(cx, p, m, mass, r, ss, count, predicted, used, frictionResidual);
+    // The force the sensor sees: contact force + parallel dashpot + sensor inertia, formed as
+    // simulateExtendedPrescribed forms it.
+    LawRun own;
+    if (!law) {
+        if (!simulateLawRun(cx, p, m, own)) return false;
+        law = &own;
+    }
+    const ExtendedModel lm = lawChannelModel(p, m);
+    const double tN = run.normalForce_N;
+    const double cp = lm.effects.viscousDamping ? lm.effects.viscousDamping->parallelDamping(tN) : 0.0;
+    const double msens = lm.effects.sensorInertia ? lm.effects.sensorInertia->mass_kg : 0.0;
+    std::vector<double> measured(n);
+    for (size_t i = 0; i < n; ++i)
+        measured[i] = law->contactForce_N[i] + cp * law->relVel_mps[i] + msens * law->accel_mps2[i];
     if (run.setup == SetupKind::Prescribed) {
-        const ExtendedTrace tr = simulateExtendedPrescribed(m, ctx, p.t, p.g, p.a.empty() ? nullptr : &p.a,
-                                                            cx.opt->substeps);
-        if (!tr.ok()) return false;
-        const std::vector<double> Fp = p.filtered(tr.measuredForce_N);
+        const std::vector<double> Fp = p.filtered(measured);
         for (size_t i = 0; i < n; ++i) {
             const double e = (Fp[i] - p.F[i]) * p.invRmsF;
             r.push_back(e);
@@ -155,7 +195,6 @@ bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, 
         }
         return true;
     }
-    if (segments) return segmentResiduals(cx, p, m, mass, r, ss, count, predicted, used, frictionResidual);
     // Dynamics: law channel + equation-of-motion channel. The law channel runs the extended law
     // (return map with ε_T and every effect, Eqs. 1–4) along the measured slip g = u − x, as in
     // the prescribed set-up, and compares its force while the contact slides (|V| >= vStick, a
@@ -163,15 +202,10 @@ bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, 
     // (elastic loading over ε_T, play, healing), so a compliant contact, a dead band or a
     // healed strength shape the force after each reversal; inside stick the measured slip's
     // noise times ε_T would swamp the comparison, and there the rig channel speaks instead.
-    ExtendedModel lawOnly = m;
-    lawOnly.effects.viscousDamping.reset();  // a rig effect here, in the equation of motion
-    const ExtendedTrace tr = simulateExtendedPrescribed(lawOnly, ctx, p.t, p.g, p.a.empty() ? nullptr : &p.a,
-                                                        cx.opt->substeps);
-    if (!tr.ok()) return false;
     const double vStick = cx.opt->stickVelocity_mps;
     std::vector<char> mask(n, 0);
     for (size_t i = 0; i < n; ++i) mask[i] = std::abs(p.V[i]) >= vStick;
-    const std::vector<double> Fp = p.filtered(tr.measuredForce_N, &mask);
+    const std::vector<double> Fp = p.filtered(measured, &mask);
     const double mm = std::isfinite(mass) ? mass : run.nominalMass_kg;
     const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
     const double c = 2.0 * zeta * std::sqrt(run.stiffness_N_per_m * mm);

@@ -1,12 +1,16 @@
-// Selection tests of the identify loop (identify_selection.cpp) on hand-made error tables, and
-// the warm-start clamp of the fit parameters (identify_fit.cpp).
+// Selection tests of the identify loop (identify_selection.cpp) on hand-made error tables, the
+// warm-start clamp of the fit parameters (identify_fit.cpp), and the law run that Jacobian
+// columns of rig and sensor parameters share (identify_residuals.cpp).
 #include <QtTest/QtTest>
 
 #include <cmath>
 #include <limits>
 
+#include "core/identify/effects/registry.hpp"
+
 #include "core/identify/identify_internal.hpp"
 
+using namespace stickslip;
 using namespace stickslip::identify;
 using namespace stickslip::identify::detail;
 
@@ -31,6 +35,39 @@ bool select(CandidateScore& sc, const ModelErrors& ref, const ModelErrors& with)
     Context cx;
     cx.opt = &opt;
     return passesSelection(cx, sc, FitOutcome{}, ref, with, {}, {0, 1, 2, 3, 4}, 1.0);
+}
+
+// A stick–slip-like run (3 Hz, 2 s at 1 kHz) in either set-up.
+IdentifyRun syntheticRun(SetupKind setup) {
+    IdentifyRun r;
+    r.setup = setup;
+    r.normalForce_N = 6.2;
+    r.stiffness_N_per_m = 3000;
+    const double w = 2 * M_PI * 3;
+    for (int i = 0; i < 2000; ++i) {
+        const double t = i * 1e-3;
+        r.t_s.push_back(t);
+        r.slip_m.push_back(1e-3 * std::sin(w * t));
+        r.relVel_mps.push_back(1e-3 * w * std::cos(w * t));
+        r.accel_mps2.push_back(-1e-3 * w * w * std::sin(w * t));
+        r.force_N.push_back(1.6 * std::tanh(2e3 * r.relVel_mps.back()) + 0.01 * std::sin(37.0 * t));
+        r.slider_m.push_back(2e-4 * std::sin(w * t + 0.3));
+        r.sliderVel_mps.push_back(2e-4 * w * std::cos(w * t + 0.3));
+    }
+    return r;
+}
+
+Prepared prepared(const IdentifyRun& r) {
+    Prepared p;
+    p.run = &r;
+    p.t = r.t_s;
+    p.g = r.slip_m;
+    p.V = r.relVel_mps;
+    p.F = r.force_N;
+    p.a = r.accel_mps2;
+    p.x = r.slider_m;
+    p.xd = r.sliderVel_mps;
+    return p;
 }
 
 }  // namespace
@@ -69,6 +106,55 @@ private slots:
         const ModelErrors mixed = errors({0.09, 0.09, 0.09, 0.09, 0.11});
         QVERIFY(!select(sc2, ref, mixed));
         QVERIFY(sc2.heldOutP > 0.05);
+    }
+
+    // Which parameters the law run along the measured slip sees.
+    void lawParametersAreTheContactOnes() {
+        for (const char* n : {"mu", "C1", "eta", "Dc", "vc", "epsT", "backlash.halfWidth_m", "frictional_lag.tau_s"})
+            QVERIFY2(lawParameter(n), n);
+        for (const char* n : {"m", "zeta", "viscous_damping.zeta", "sensor_inertia.mass_kg"}) QVERIFY2(!lawParameter(n), n);
+    }
+
+    // A model that differs only in m, ζ, a viscous damping or a sensor mass may reuse another's law
+    // run: the residuals are bit for bit those of its own simulation, in both set-ups; a model
+    // with another law parameter is not (the test would see it).
+    void sharedLawRunGivesIdenticalResiduals() {
+        IdentifyOptions opt;
+        Context cx;
+        cx.opt = &opt;
+        for (SetupKind setup : {SetupKind::Prescribed, SetupKind::Dynamics}) {
+            const IdentifyRun run = syntheticRun(setup);
+            const Prepared p = prepared(run);
+            ExtendedModel a;
+            a.law.mu = 0.25; a.law.C1 = 0.2; a.law.eta_s_per_m = 0.6; a.law.Dc_m = 2e-5; a.law.vc_mps = 0.1;
+            a.law.epsT_N_per_m = 5e4;
+            a.tNref_N = 6.2;
+            ExtendedModel b = a;
+            b.effects.viscousDamping = ViscousDamping{0.02};
+            b.effects.sensorInertia = SensorInertia{0.01};
+            LawRun lawA;
+            QVERIFY(simulateLawRun(cx, p, a, lawA));
+            std::vector<double> own, shared;
+            double ss1 = 0, n1 = 0, ss2 = 0, n2 = 0;
+            QVERIFY(runResiduals(cx, p, b, 0.5, own, ss1, n1, nullptr, nullptr, nullptr, false));
+            QVERIFY(runResiduals(cx, p, b, 0.5, shared, ss2, n2, nullptr, nullptr, nullptr, false, &lawA));
+            QCOMPARE(shared.size(), own.size());
+            QVERIFY(own == shared);
+            QCOMPARE(ss1, ss2);
+            // ... and it is the force the extended model's own simulation has the sensor measure.
+            if (setup == SetupKind::Prescribed) {
+                std::vector<double> r, pred;
+                QVERIFY(runResiduals(cx, p, b, 0.5, r, ss2, n2, &pred, nullptr, nullptr, false, &lawA));
+                const ExtendedTrace tr = simulateExtendedPrescribed(b, {run.normalForce_N, 0}, p.t, p.g, &p.a, opt.substeps);
+                QVERIFY(pred == tr.measuredForce_N);
+            }
+            // A different law: its residuals differ from the shared law run's.
+            ExtendedModel c = b;
+            c.law.mu = 0.26;
+            std::vector<double> other;
+            QVERIFY(runResiduals(cx, p, c, 0.5, other, ss1, n1, nullptr, nullptr, nullptr, false));
+            QVERIFY(other != shared);
+        }
     }
 };
 
