@@ -16,14 +16,11 @@
 
 #include "cli_runner.hpp"
 
+#include "tests/file_bytes.hpp"
+
 namespace {
 
 QString damper(const char* name) { return QStringLiteral(STICKSLIP_SHARED_DIR "/data/real/friction-damper/") + name; }
-
-QByteArray readAll(const QString& path) {
-    QFile f(path);
-    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
-}
 
 void writeText(const QString& path, const QByteArray& text) {
     QFile f(path);

@@ -14,6 +14,8 @@
 using stickslip::testing::CliResult;
 using stickslip::testing::runCli;
 
+#include "tests/file_bytes.hpp"
+
 namespace {
 
 // 6 × 5 cells, each about as costly as a default map cell (settle 50, samples 64).
@@ -21,11 +23,6 @@ QStringList mapArgs(const QString& out) {
     return {"map",       "--preset", "fig20", "--from",  "0.2mm", "--to",      "5mm", "--steps", "6",
             "--param2",  "f",        "--from2", "3",     "--to2",  "10",       "--steps2", "5", "--out",
             out};
-}
-
-QByteArray readAll(const QString& path) {
-    QFile f(path);
-    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
 }
 
 int cellLines(const QByteArray& log) { return int(log.count("\ncell ")); }

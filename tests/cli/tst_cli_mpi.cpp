@@ -12,6 +12,8 @@ using stickslip::testing::CliResult;
 using stickslip::testing::runCli;
 using stickslip::testing::runProcess;
 
+#include "tests/file_bytes.hpp"
+
 namespace {
 
 CliResult runMpi(int ranks, const QStringList& cliArgs, int timeout_ms = 120000) {
@@ -26,11 +28,6 @@ CliResult runMpi(int ranks, const QStringList& cliArgs, int timeout_ms = 120000)
     if (env.contains("ASAN_OPTIONS")) env.insert("ASAN_OPTIONS", env.value("ASAN_OPTIONS") + ":detect_leaks=0");
     const QStringList args{"--oversubscribe", "-np", QString::number(ranks), QStringLiteral(STICKSLIP_CLI)};
     return runProcess(QStringLiteral(STICKSLIP_MPIEXEC), args + cliArgs, timeout_ms, env);
-}
-
-QByteArray readAll(const QString& path) {
-    QFile f(path);
-    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
 }
 
 QStringList mapArgs(const QString& out) {

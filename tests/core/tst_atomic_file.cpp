@@ -9,15 +9,11 @@
 
 #include "core/io/atomic_file.hpp"
 #include "core/io/csv_table.hpp"
+#include "tests/file_bytes.hpp"
 
 using stickslip::io::AtomicFileWriter;
 
 namespace {
-
-QByteArray readAll(const QString& path) {
-    QFile f(path);
-    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
-}
 
 QStringList filesIn(const QString& dir) { return QDir(dir).entryList(QDir::Files); }
 

@@ -13,15 +13,12 @@
 #include "core/io/run_csv.hpp"
 #include "core/presets.hpp"
 
+#include "tests/file_bytes.hpp"
+
 using namespace stickslip;
 using namespace stickslip::io;
 
 namespace {
-
-QByteArray readAll(const QString& path) {
-    QFile f(path);
-    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
-}
 
 SimParams fig20(SetupKind setup) {
     Preset pr;

@@ -17,15 +17,12 @@
 
 #include "session.hpp"
 
+#include "tests/file_bytes.hpp"
+
 using namespace stickslip;
 using namespace stickslip::gui;
 
 namespace {
-
-QByteArray readAll(const QString& path) {
-    QFile f(path);
-    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
-}
 
 // PDFs carry their creation time, so two writes of one plot differ in a few bytes of equal
 // length: a PDF counts as one of the versions when it is whole (header, %%EOF trailer) and

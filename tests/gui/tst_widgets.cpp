@@ -34,6 +34,8 @@
 #include "widgets/spectrum_plot.hpp"
 #include "widgets/time_series_plot.hpp"
 
+#include "tests/file_bytes.hpp"
+
 using namespace stickslip;
 using namespace stickslip::widgets;
 
@@ -67,12 +69,6 @@ RunResult ellipseRun(bool cw, int cycles, double period, int perCycle) {
         r.samples.push_back(s);
     }
     return r;
-}
-
-QByteArray readAll(const QString& path) {
-    QFile f(path);
-    if (!f.open(QIODevice::ReadOnly)) return {};
-    return f.readAll();
 }
 
 }  // namespace
