@@ -178,10 +178,10 @@ bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, 
     const ExtendedModel lm = lawChannelModel(p, m);
     const double tN = run.normalForce_N;
     const double cp = lm.effects.viscousDamping ? lm.effects.viscousDamping->parallelDamping(tN) : 0.0;
-    const double msens = lm.effects.sensorInertia ? lm.effects.sensorInertia->mass_kg : 0.0;
+    const double ms = m.effects.sensorInertia ? m.effects.sensorInertia->mass_kg : 0.0;  // sensed in both channels
     std::vector<double> measured(n);
     for (size_t i = 0; i < n; ++i)
-        measured[i] = law->contactForce_N[i] + cp * law->relVel_mps[i] + msens * law->accel_mps2[i];
+        measured[i] = law->contactForce_N[i] + cp * law->relVel_mps[i] + ms * law->accel_mps2[i];
     if (run.setup == SetupKind::Prescribed) {
         const std::vector<double> Fp = p.filtered(measured);
         for (size_t i = 0; i < n; ++i) {
@@ -209,7 +209,6 @@ bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, 
     const double mm = std::isfinite(mass) ? mass : run.nominalMass_kg;
     const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
     const double c = 2.0 * zeta * std::sqrt(run.stiffness_N_per_m * mm);
-    const double ms = m.effects.sensorInertia ? m.effects.sensorInertia->mass_kg : 0.0;
     for (size_t i = 0; i < n; ++i) {
         double e = 0;
         const bool compared = mask[i];
