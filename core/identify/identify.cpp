@@ -98,6 +98,15 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         const double cap = std::min(f.count / std::max(tauInt, 1.0), s.segments ? std::max(segEpisodes, 2.0) : episodes);
         return bic(f.ss, f.count, cap, f.nFree);
     };
+    if (opt.selfTest.replicas > 0) {
+        res.selfTest = runSelfTest(cx, spec, cur, fitIdx, cands,
+                                   std::min(cur.count / std::max(curDiag.integratedAcfTime, 1.0), episodes));
+        if (!res.selfTest.ok && opt.cancel && opt.cancel->load()) {
+            res.cancelled = true;
+            res.message = "cancelled during the self-test";
+            return res;
+        }
+    }
     auto residualName = [&](const Spec& s) {
         return !cx.anyDynamics ? std::string("prescribed") : s.segments ? std::string("segments") : std::string("equation_error");
     };

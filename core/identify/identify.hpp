@@ -33,6 +33,7 @@
 #include "diagnostics.hpp"
 #include "extended_model.hpp"
 #include "preprocess.hpp"
+#include "self_test.hpp"
 
 namespace stickslip::identify {
 
@@ -125,6 +126,9 @@ struct IdentifyOptions {
     int maxSegmentsPerRun = 12;      // Segments: at most this many segments per run (evenly spread)
     int segmentSubsteps = 8;         // Segments: Newmark steps per (decimated) sample
     uint64_t seed = 20260611;
+    // Recovery self-test on replicas of these runs made from the fitted baseline (self_test.hpp);
+    // off unless selfTest.replicas > 0.
+    SelfTestOptions selfTest;
     const std::atomic<bool>* cancel = nullptr;
     std::function<void(const std::string& stage, double fraction)> progress;
 };
@@ -213,6 +217,7 @@ struct IdentifyResult {
     int nullReplicas = 0;
     double segmentsUsed = 0;  // dynamics: segments in the fit runs (units of the BIC with the segment residual)
     std::string residual;     // residual of "before"/"after": "prescribed", "equation_error" or "segments"
+    SelfTestResult selfTest;  // ran only when IdentifyOptions::selfTest.replicas > 0
 };
 
 IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOptions& options);

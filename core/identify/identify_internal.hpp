@@ -155,10 +155,18 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
 void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& opt, Prepared& p);
 
 double bic(double ss, double n, double neffCap, int p);
+// The value of an effect's size parameter q at which the effect is absent in this data set's
+// model (q.vanishing, except where a baseline parameter covers part of the range).
+double effectVanishes(const Context& cx, const std::string& effect, const EffectParam& q);
 constexpr int kMinUnitsForTests = 3;  // runs needed for the paired test and the jackknife (≥ 2 degrees of freedom)
 bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fit, const ModelErrors& ref,
                      const ModelErrors& with, const std::vector<std::map<std::string, double>>& loo,
                      const std::vector<size_t>& units, double tauInt);
+
+// The recovery self-test (self_test.hpp) around the fitted baseline `base` of `spec`; neffCap as
+// the loop's BIC uses it.
+SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome& base, const std::vector<size_t>& fitIdx,
+                           const std::vector<std::string>& cands, double neffCap);
 
 Sos predictionFilterAt(const FilterSettings& fs, double rate_Hz);
 bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, Context& cx, int& decimation,

@@ -65,6 +65,7 @@ nlohmann::json toJson(const IdentifyResult& r) {
     j["before"] = toJson(r.before);
     j["after"] = toJson(r.after);
     j["final_parameters"] = toJson(r.final);
+    if (r.selfTest.ran) j["self_test"] = toJson(r.selfTest);
     nlohmann::json added = nlohmann::json::array();
     for (const AddedEffect& e : r.effectsAdded) {
         nlohmann::json pointed = nlohmann::json::object();

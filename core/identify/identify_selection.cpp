@@ -16,6 +16,12 @@ namespace stickslip::identify::detail {
 // Penalised criterion with the effective number of independent residuals n_eff. The residual
 // of a model that is slightly wrong repeats from one slip episode to the next, so samples
 // within an episode are not independent: n_eff = min(n/τ_int, number of slip episodes).
+double effectVanishes(const Context& cx, const std::string& effect, const EffectParam& q) {
+    // The rig's ζ is a baseline parameter up to kBaselineMax: damping beyond it is the effect.
+    if (effect == "viscous_damping" && cx.anyDynamics) return ViscousDamping::kBaselineMax;
+    return q.vanishing;
+}
+
 double bic(double ss, double n, double neffCap, int p) {
     const double neff = std::max(std::min(n, neffCap), 2.0);
     return neff * std::log(std::max(ss, 1e-300) / std::max(n, 1.0)) + p * std::log(neff);
@@ -90,8 +96,7 @@ bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fi
     const EffectParam& q = info.params.front();
     const std::string key = sc.name + "." + q.name;
     const bool inverse = std::isinf(q.vanishing);  // e.g. a stiffness: test its compliance 1/k
-    const double none = sc.name == "viscous_damping" && cx.anyDynamics ? ViscousDamping::kBaselineMax
-                                                                        : (inverse ? 0.0 : q.vanishing);
+    const double none = inverse ? 0.0 : effectVanishes(cx, sc.name, q);
     auto size = [&](double v) { return inverse ? 1.0 / v : v; };
     const double value = fit.values.count(key) ? size(fit.values.at(key)) : kNaN;
     std::vector<double> jk;

@@ -44,9 +44,8 @@ double NullGains::quantile(double p) const {
     return gains[k];
 }
 
-NullGains projectionGainNull(const Eigen::MatrixXd& J0, const Eigen::MatrixXd& Jc, const std::vector<NoiseBlock>& blocks,
-                             int replicas, uint64_t seed) {
-    NullGains out;
+ProjectionBases projectionBases(const Eigen::MatrixXd& J0, const Eigen::MatrixXd& Jc) {
+    ProjectionBases out;
     const Eigen::Index n = Jc.rows();
     if (n == 0 || Jc.cols() == 0 || (J0.cols() > 0 && J0.rows() != n)) return out;
     // Orthonormal basis of span(J_0), then of the part of span(J_c) orthogonal to it.
@@ -55,24 +54,36 @@ NullGains projectionGainNull(const Eigen::MatrixXd& J0, const Eigen::MatrixXd& J
         Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr0(J0);
         qr0.setThreshold(1e-9);
         const Eigen::Index r0 = qr0.rank();
-        const Eigen::MatrixXd Q0 = (qr0.householderQ() * Eigen::MatrixXd::Identity(n, r0));
-        R -= Q0 * (Q0.transpose() * Jc);
+        out.Q0 = (qr0.householderQ() * Eigen::MatrixXd::Identity(n, r0));
+        R -= out.Q0 * (out.Q0.transpose() * Jc);
+    } else {
+        out.Q0.resize(n, 0);
     }
     // Dependence measured against the columns' own size before the projection.
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qrc(R);
     const double scale = std::max(Jc.norm(), 1e-300);
     qrc.setThreshold(1e-9 * scale / std::max(R.norm(), 1e-300));
     const Eigen::Index rc = qrc.rank();
+    out.Qc = rc > 0 ? Eigen::MatrixXd(qrc.householderQ() * Eigen::MatrixXd::Identity(n, rc)) : Eigen::MatrixXd(n, 0);
+    out.valid = true;
+    return out;
+}
+
+NullGains projectionGainNull(const Eigen::MatrixXd& J0, const Eigen::MatrixXd& Jc, const std::vector<NoiseBlock>& blocks,
+                             int replicas, uint64_t seed) {
+    NullGains out;
+    const ProjectionBases pb = projectionBases(J0, Jc);
+    if (!pb.valid) return out;
+    const Eigen::Index n = Jc.rows(), rc = pb.Qc.cols();
     out.rankExtra = static_cast<int>(rc);
     if (rc == 0) {
         out.gains.assign(static_cast<size_t>(std::max(replicas, 0)), 0.0);
         return out;
     }
-    const Eigen::MatrixXd Qc = (qrc.householderQ() * Eigen::MatrixXd::Identity(n, rc));
     for (int b = 0; b < replicas; ++b) {
         const std::vector<double> e = noiseReplica(blocks, static_cast<size_t>(n), seed + static_cast<uint64_t>(b));
         const Eigen::Map<const Eigen::VectorXd> ev(e.data(), n);
-        out.gains.push_back((Qc.transpose() * ev).squaredNorm());
+        out.gains.push_back((pb.Qc.transpose() * ev).squaredNorm());
     }
     std::sort(out.gains.begin(), out.gains.end());
     return out;

@@ -42,6 +42,17 @@ struct NullGains {
     double quantile(double p) const;  // empirical p-quantile (the ceil(p·B)-th smallest)
 };
 
+// Orthonormal bases of the linearised refit: Q0 of span(J0) (the current model's columns) and
+// Qc of the part of span(Jc) orthogonal to it (rank-revealing QR, relative tolerance 1e-9; Qc
+// has no columns when Jc adds nothing). valid is false when the shapes do not match or Jc is
+// empty. The gain of the candidate on a residual e is ‖Qcᵀ e‖², the current model's refit
+// removes ‖Q0ᵀ e‖².
+struct ProjectionBases {
+    Eigen::MatrixXd Q0, Qc;
+    bool valid = false;
+};
+ProjectionBases projectionBases(const Eigen::MatrixXd& J0, const Eigen::MatrixXd& Jc);
+
 // Gains ‖P⊥ e_b‖² of `replicas` noise replicas (seeds seed, seed+1, …). J0: n × p (may have
 // p = 0), Jc: n × q. Columns that are numerically dependent (relative tolerance 1e-9) add
 // nothing.

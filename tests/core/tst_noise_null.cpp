@@ -93,6 +93,42 @@ private slots:
         QVERIFY2(redQ > 5.0 * whiteQ, qPrintable(QString("%1 vs %2").arg(redQ).arg(whiteQ)));
     }
 
+    // The bases of the linearised refit: Q0 orthonormal over span(J0), Qc orthonormal and
+    // orthogonal to it, spanning what J_c adds; a column that J0 already has adds nothing.
+    void projectionBasesSplitTheSpans() {
+        std::mt19937_64 rng(7);
+        std::normal_distribution<double> nd;
+        const int n = 400;
+        Eigen::MatrixXd J0(n, 2), Jc(n, 2);
+        for (int i = 0; i < n; ++i) {
+            J0(i, 0) = nd(rng);
+            J0(i, 1) = nd(rng);
+            Jc(i, 0) = nd(rng);
+            Jc(i, 1) = 2.0 * J0(i, 0) - J0(i, 1);  // inside span(J0)
+        }
+        const ProjectionBases pb = projectionBases(J0, Jc);
+        QVERIFY(pb.valid);
+        QCOMPARE(pb.Q0.cols(), Eigen::Index(2));
+        QCOMPARE(pb.Qc.cols(), Eigen::Index(1));
+        QVERIFY((pb.Q0.transpose() * pb.Q0 - Eigen::MatrixXd::Identity(2, 2)).norm() < 1e-12);
+        QVERIFY((pb.Qc.transpose() * pb.Qc - Eigen::MatrixXd::Identity(1, 1)).norm() < 1e-12);
+        QVERIFY((pb.Q0.transpose() * pb.Qc).norm() < 1e-12);
+        // Q0 spans J0: J0 is reproduced by its projection.
+        QVERIFY((pb.Q0 * (pb.Q0.transpose() * J0) - J0).norm() < 1e-10 * J0.norm());
+        // The gain of Jc's first column is its part orthogonal to J0.
+        const Eigen::VectorXd e = Jc.col(0);
+        const Eigen::VectorXd perp = e - pb.Q0 * (pb.Q0.transpose() * e);
+        QVERIFY(std::abs((pb.Qc.transpose() * e).squaredNorm() - perp.squaredNorm()) < 1e-10 * e.squaredNorm());
+        // Only dependent columns: nothing extra; mismatched shapes: invalid.
+        QCOMPARE(projectionBases(J0, J0.col(1)).Qc.cols(), Eigen::Index(0));
+        QVERIFY(!projectionBases(J0, Eigen::MatrixXd(n + 1, 1)).valid);
+        QVERIFY(!projectionBases(J0, Eigen::MatrixXd(n, 0)).valid);
+        // No current columns: Q0 is empty and Qc spans Jc.
+        const ProjectionBases alone = projectionBases(Eigen::MatrixXd(n, 0), J0);
+        QVERIFY(alone.valid);
+        QCOMPARE(alone.Q0.cols(), Eigen::Index(0));
+        QCOMPARE(alone.Qc.cols(), Eigen::Index(2));
+    }
     void quantileOfEmptyAndEdges() {
         NullGains g;
         QCOMPARE(g.quantile(0.95), 0.0);

@@ -1,0 +1,378 @@
+// The recovery self-test (self_test.hpp): replicas of the user's runs with and without an
+// injected effect, scored by the selection's tests (1a) and (1b) in the linearised refit.
+#include "self_test.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "identify_internal.hpp"
+
+namespace stickslip::identify {
+
+std::string SelfTestOptions::validate() const {
+    if (replicas < 0 || replicas > 10000)
+        return "self-test replicas = " + std::to_string(replicas) + " is outside the allowed range [0, 10000]";
+    if (replicas > 0 && levels.empty() && sizes.empty()) return "self-test: no signal level and no stated size";
+    for (double l : levels)
+        if (!(l > 0 && l <= 100)) return "self-test level = " + std::to_string(l) + " is outside the allowed range (0, 100]";
+    for (const auto& [name, v] : sizes) {
+        EffectInfo info;
+        if (!findEffect(name, info)) return "self-test size: unknown effect '" + name + "'";
+        const EffectParam& q = info.params.front();
+        if (!std::isfinite(v)) return "self-test size of " + name + "." + q.name + " = " + std::to_string(v) + " is not finite";
+    }
+    return {};
+}
+
+namespace detail {
+namespace {
+
+using Vec = Eigen::VectorXd;
+
+// The linearised selection of one candidate: its bases, parameter count and null quantile.
+struct LinearCandidate {
+    std::string name;
+    ProjectionBases bases;
+    int params = 0;
+    double nullQuantile = 0;
+};
+
+double squaredNorm(const Eigen::MatrixXd& Q, const Vec& e) { return Q.cols() ? (Q.transpose() * e).squaredNorm() : 0.0; }
+
+// The (1 − α) quantile of the gains ‖Qcᵀ e_b‖² on noise replicas (as projectionGainNull).
+double nullQuantileOf(const ProjectionBases& pb, const std::vector<NoiseBlock>& blocks, size_t n, const IdentifyOptions& opt,
+                      uint64_t seed) {
+    if (opt.nullReplicas <= 0 || pb.Qc.cols() == 0) return 0.0;
+    NullGains ng;
+    for (int b = 0; b < opt.nullReplicas; ++b) {
+        const std::vector<double> e = noiseReplica(blocks, n, seed + static_cast<uint64_t>(b));
+        ng.gains.push_back(squaredNorm(pb.Qc, Eigen::Map<const Vec>(e.data(), static_cast<Eigen::Index>(n))));
+    }
+    std::sort(ng.gains.begin(), ng.gains.end());
+    return ng.quantile(1.0 - opt.nullAlpha);
+}
+
+struct Selector {
+    ProjectionBases base;  // Qc: the baseline's columns
+    int baseParams = 0;
+    double count = 0, cap = 0, margin = 0;
+    bool useNull = true;
+    // Index of the candidate the selection picks on the residual e of the baseline, −1 if none.
+    // `truth`: the injected candidate's index, fitted at its true size, where its residual is the
+    // replica's noise alone (only its linearised refit around it remains); −1 for none.
+    int pick(const Vec& e, const std::vector<const LinearCandidate*>& cands, int truth = -1, const Vec* noise = nullptr) const {
+        const double ee = e.squaredNorm();
+        const double ssCur = std::max(ee - squaredNorm(base.Qc, e), 1e-300);
+        const double bicCur = bic(ssCur, count, cap, baseParams);
+        int best = -1;
+        double bestDb = 0;
+        for (size_t i = 0; i < cands.size(); ++i) {
+            const LinearCandidate& c = *cands[i];
+            if (c.bases.Qc.cols() == 0) continue;
+            const Vec& r = static_cast<int>(i) == truth && noise ? *noise : e;
+            const double rr = static_cast<int>(i) == truth && noise ? r.squaredNorm() : ee;
+            const double ss0 = rr - squaredNorm(c.bases.Q0, r);
+            const double ssWith = std::max(ss0 - squaredNorm(c.bases.Qc, r), 1e-300);
+            const double db = bic(ssWith, count, cap, c.params) - bicCur;
+            if (!(db < -margin)) continue;
+            if (useNull && !(ssCur - ssWith > c.nullQuantile)) continue;
+            if (best < 0 || db < bestDb) { best = static_cast<int>(i); bestDb = db; }
+        }
+        return best;
+    }
+};
+
+// The effect's parameters at their start values on top of the baseline (as scannedStart does).
+std::map<std::string, double> effectStart(const Context& cx, const std::string& effect, std::map<std::string, double> vals) {
+    EffectInfo info;
+    findEffect(effect, info);
+    for (const EffectParam& q : info.params) {
+        const auto from = q.continues ? vals.find(q.continues) : vals.end();
+        vals[effect + "." + q.name] = from != vals.end() ? from->second : scaledParam(q, cx.muScale).initial;
+    }
+    return vals;
+}
+
+// The size parameter's value at position u ∈ [0, 1] from where the effect vanishes (or, for a
+// parameter that continues a baseline one, from the baseline's value) to its physical bound.
+double sizeAt(const EffectParam& q, double from, double u) {
+    if (std::isinf(q.vanishing)) return q.upper * std::pow(q.lower / q.upper, u);  // a stiffness: softer is larger
+    if (q.logScale) return std::max(q.lower, from) * std::pow(q.upper / std::max(q.lower, from), u);
+    const double to = q.upper > from ? q.upper : q.lower;
+    return from + u * (to - from);
+}
+
+struct Injection {
+    double size = 0, rms = 0;
+    std::vector<double> signal;
+    bool ok = false;
+    std::string note;
+};
+
+}  // namespace
+
+SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome& base, const std::vector<size_t>& fitIdx,
+                           const std::vector<std::string>& cands, double neffCap) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const IdentifyOptions& opt = *cx.opt;
+    const SelfTestOptions& so = opt.selfTest;
+    SelfTestResult out;
+    out.ran = true;
+    auto cancelled = [&] { return opt.cancel && opt.cancel->load(); };
+    auto progress = [&](const std::string& s, double f) { if (opt.progress) opt.progress("self-test: " + s, f); };
+    if (const std::string why = so.validate(); !why.empty()) { out.message = why; return out; }
+    std::vector<double> r0;
+    std::vector<NoiseBlock> blocks;
+    if (!residualVector(cx, spec, base.values, fitIdx, r0, &blocks)) { out.message = "baseline residual failed"; return out; }
+    const size_t n = r0.size();
+    std::vector<char> used(n, 0);
+    for (const NoiseBlock& b : blocks)
+        for (size_t k = 0; k < b.length; ++k) used[b.offset + k] = b.used[k];
+    double ss0 = 0, count = 0;
+    for (size_t k = 0; k < n; ++k)
+        if (used[k]) { ss0 += r0[k] * r0[k]; count += 1; }
+    if (count < 2) { out.message = "no compared samples"; return out; }
+    out.noiseRms = std::sqrt(ss0 / count);
+    out.nullReplicas = opt.nullReplicas;
+    out.neff = std::max(std::min(count, neffCap), 2.0);
+
+    progress("baseline Jacobian", 0.0);
+    const std::vector<FitParameter> ps0 = parameters(cx, spec, base.values);
+    std::vector<std::string> baseNames;
+    for (const FitParameter& p : ps0)
+        if (p.free) baseNames.push_back(p.name);
+    const Eigen::MatrixXd J0 = residualJacobian(cx, spec, base.values, fitIdx, ps0, baseNames, n);
+    Selector sel;
+    sel.base = projectionBases(Eigen::MatrixXd(static_cast<Eigen::Index>(n), 0), J0);
+    sel.baseParams = static_cast<int>(baseNames.size());
+    sel.count = count;
+    sel.cap = neffCap;
+    sel.margin = opt.bicMargin;
+    sel.useNull = opt.nullReplicas > 0;
+    const uint64_t nullSeed = opt.seed + 6151u, replicaSeed = opt.seed + 104729u;
+
+    // The candidate `c` linearised at `vals` (its effect parameters included).
+    auto linearise = [&](const std::string& c, const std::map<std::string, double>& vals, LinearCandidate& lc) {
+        Spec s2 = spec;
+        s2.effects.push_back(c);
+        const std::vector<FitParameter> ps = parameters(cx, s2, vals);
+        std::vector<std::string> effNames;
+        std::vector<Eigen::Index> baseCols;
+        for (const FitParameter& p : ps) {
+            if (!p.free) continue;
+            if (p.name.rfind(c + ".", 0) == 0) { effNames.push_back(p.name); continue; }
+            const auto it = std::find(baseNames.begin(), baseNames.end(), p.name);
+            if (it != baseNames.end()) baseCols.push_back(static_cast<Eigen::Index>(it - baseNames.begin()));
+        }
+        Eigen::MatrixXd J0c(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(baseCols.size()));
+        for (size_t j = 0; j < baseCols.size(); ++j) J0c.col(static_cast<Eigen::Index>(j)) = J0.col(baseCols[j]);
+        const Eigen::MatrixXd Jc = residualJacobian(cx, s2, vals, fitIdx, ps, effNames, n);
+        lc.name = c;
+        lc.bases = projectionBases(J0c, Jc);
+        lc.params = static_cast<int>(baseCols.size() + effNames.size());
+        lc.nullQuantile = nullQuantileOf(lc.bases, blocks, n, opt, nullSeed);
+    };
+    std::vector<LinearCandidate> lin(cands.size());
+    for (size_t i = 0; i < cands.size(); ++i) {
+        if (cancelled()) { out.message = "cancelled"; return out; }
+        progress("linearising " + cands[i], static_cast<double>(i) / cands.size());
+        linearise(cands[i], effectStart(cx, cands[i], base.values), lin[i]);
+    }
+
+    // The injected signal r(baseline + effect at size) − r(baseline) on the compared samples.
+    auto inject = [&](const std::string& c, double size, Injection& inj) {
+        EffectInfo info;
+        findEffect(c, info);
+        std::map<std::string, double> vals = effectStart(cx, c, base.values);
+        vals[c + "." + info.params.front().name] = size;
+        Spec s2 = spec;
+        s2.effects.push_back(c);
+        std::vector<double> r;
+        inj.size = size;
+        inj.ok = residualVector(cx, s2, vals, fitIdx, r) && r.size() == n;
+        if (!inj.ok) return;
+        inj.signal.assign(n, 0.0);
+        double ss = 0;
+        for (size_t k = 0; k < n; ++k)
+            if (used[k]) { inj.signal[k] = r[k] - r0[k]; ss += inj.signal[k] * inj.signal[k]; }
+        inj.rms = std::sqrt(ss / count);
+    };
+
+    // One row per effect and level (or stated size).
+    struct Job {
+        size_t cand;
+        double level;
+        Injection inj;
+    };
+    std::vector<Job> jobs;
+    for (const auto& [name, v] : so.sizes) {
+        EffectInfo info;
+        findEffect(name, info);
+        const EffectParam q = scaledParam(info.params.front(), cx.muScale);
+        if (std::find(cands.begin(), cands.end(), name) == cands.end()) {
+            out.message = "self-test size given for " + name + ", which is not among the candidates";
+            return out;
+        }
+        if (!(v >= q.lower && v <= q.upper)) {
+            out.message = "self-test size of " + name + "." + q.name + " = " + std::to_string(v) + " " + q.unit +
+                          " is outside its physical range [" + std::to_string(q.lower) + ", " + std::to_string(q.upper) + "]";
+            return out;
+        }
+    }
+    for (size_t i = 0; i < cands.size(); ++i) {
+        if (so.sizes.count(cands[i])) jobs.push_back({i, -1.0, {}});
+        else
+            for (double l : so.levels) jobs.push_back({i, l, {}});
+    }
+    progress("sizes", 0.0);
+    parallelFor(jobs.size(), [&](size_t j) {
+        Job& job = jobs[j];
+        const std::string& c = cands[job.cand];
+        EffectInfo info;
+        findEffect(c, info);
+        const EffectParam q = scaledParam(info.params.front(), cx.muScale);
+        if (job.level < 0) { inject(c, so.sizes.at(c), job.inj); return; }
+        const double from = effectVanishes(cx, c, q);
+        const double target = job.level * out.noiseRms;
+        Injection hi;
+        inject(c, sizeAt(q, from, 1.0), hi);
+        if (!hi.ok || cancelled()) { job.inj = hi; return; }
+        if (hi.rms < target) {
+            job.inj = std::move(hi);
+            job.inj.note = "the largest physical size gives only " + std::to_string(job.inj.rms / out.noiseRms) + " of the level";
+            return;
+        }
+        double lo = 0.0, up = 1.0;
+        job.inj = std::move(hi);
+        for (int it = 0; it < 24 && !cancelled(); ++it) {  // the signal grows with the size
+            const double mid = 0.5 * (lo + up);
+            Injection m;
+            inject(c, sizeAt(q, from, mid), m);
+            if (!m.ok) break;
+            if (m.rms < target) lo = mid;
+            else { up = mid; job.inj = std::move(m); }
+            if (std::abs(job.inj.rms - target) < 0.01 * target) break;
+        }
+    });
+    if (cancelled()) { out.message = "cancelled"; return out; }
+    // Levels beyond what the physical range reaches all end on the bound: one row for them.
+    {
+        std::vector<Job> kept;
+        for (Job& j : jobs) {
+            const bool dup = std::any_of(kept.begin(), kept.end(), [&](const Job& k) {
+                return k.cand == j.cand && k.inj.ok && j.inj.ok && k.inj.size == j.inj.size;
+            });
+            if (!dup) kept.push_back(std::move(j));
+        }
+        jobs = std::move(kept);
+    }
+
+    std::vector<const LinearCandidate*> all;
+    for (const LinearCandidate& lc : lin) all.push_back(&lc);
+    for (size_t j = 0; j < jobs.size(); ++j) {
+        if (cancelled()) { out.message = "cancelled"; return out; }
+        Job& job = jobs[j];
+        const std::string& c = cands[job.cand];
+        progress("replicas of " + c, static_cast<double>(j) / jobs.size());
+        EffectInfo info;
+        findEffect(c, info);
+        SelfTestRow row;
+        row.effect = c;
+        row.sizeParam = info.params.front().name;
+        row.unit = info.params.front().unit;
+        row.level = job.level;
+        row.note = job.inj.note;
+        if (row.note.empty() && job.level > 0 && std::abs(job.inj.rms / out.noiseRms - job.level) > 0.1 * job.level)
+            row.note = "nearest size within the physical range";
+        if (!job.inj.ok) {
+            row.note = "the model with the effect could not be simulated";
+            out.rows.push_back(row);
+            continue;
+        }
+        row.size = job.inj.size;
+        row.signalRms = job.inj.rms;
+        row.snr = job.inj.rms / out.noiseRms;
+        {
+            const Eigen::Map<const Vec> sv(job.inj.signal.data(), static_cast<Eigen::Index>(n));
+            const double vis = std::max(sv.squaredNorm() - squaredNorm(sel.base.Qc, sv), 0.0);
+            row.visibleSnr = std::sqrt(vis / count) / out.noiseRms;
+        }
+        // The injected candidate linearised where the effect is (a fit would start there after its scan).
+        LinearCandidate atSize;
+        std::map<std::string, double> vals = effectStart(cx, c, base.values);
+        vals[c + "." + row.sizeParam] = job.inj.size;
+        linearise(c, vals, atSize);
+        std::vector<const LinearCandidate*> cs = all;
+        cs[job.cand] = &atSize;
+        const Eigen::Map<const Vec> sig(job.inj.signal.data(), static_cast<Eigen::Index>(n));
+        for (int b = 0; b < so.replicas; ++b) {
+            const std::vector<double> noise = noiseReplica(blocks, n, replicaSeed + static_cast<uint64_t>(b));
+            const Vec nv = Eigen::Map<const Vec>(noise.data(), static_cast<Eigen::Index>(n));
+            const Vec e = sig + nv;
+            const int p = sel.pick(e, cs, static_cast<int>(job.cand), &nv);
+            ++row.replicas;
+            if (p == static_cast<int>(job.cand)) ++row.detected;
+            else if (p < 0) ++row.missed;
+            else { ++row.confused; ++row.confusedWith[cands[static_cast<size_t>(p)]]; }
+        }
+        out.rows.push_back(std::move(row));
+    }
+    // False alarms: replicas of the baseline with noise only (as many as all effects' replicas of one level).
+    progress("replicas without an effect", 1.0);
+    const int nNull = so.replicas * static_cast<int>(std::max<size_t>(cands.size(), 1));
+    for (int b = 0; b < nNull && !cancelled(); ++b) {
+        const std::vector<double> noise = noiseReplica(blocks, n, replicaSeed + 500009u + static_cast<uint64_t>(b));
+        const int p = sel.pick(Eigen::Map<const Vec>(noise.data(), static_cast<Eigen::Index>(n)), all);
+        ++out.falseAlarmReplicas;
+        if (p >= 0) { ++out.falseAlarms; ++out.falseAlarmsBy[cands[static_cast<size_t>(p)]]; }
+    }
+    if (cancelled()) { out.message = "cancelled"; return out; }
+    out.ok = true;
+    out.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+}
+
+}  // namespace detail
+
+nlohmann::json toJson(const SelfTestResult& r) {
+    nlohmann::json j;
+    j["ok"] = r.ok;
+    if (!r.message.empty()) j["message"] = r.message;
+    j["method"] = "replicas = fitted baseline + injected effect (simulated) + AR(1) noise of the baseline residual; "
+                  "tests (1a) dBIC and (1b) noise null of the selection in the linearised refit; the held-out and "
+                  "size tests are not applied (detection rates are upper bounds for the full loop)";
+    j["noise_rms"] = r.noiseRms;
+    j["n_eff"] = r.neff;
+    j["null_replicas"] = r.nullReplicas;
+    j["false_alarm_replicas"] = r.falseAlarmReplicas;
+    j["false_alarms"] = r.falseAlarms;
+    j["false_alarm_rate"] = r.falseAlarmReplicas > 0 ? static_cast<double>(r.falseAlarms) / r.falseAlarmReplicas : 0.0;
+    j["false_alarms_by_effect"] = r.falseAlarmsBy;
+    j["wall_time_s"] = r.wallTime_s;
+    nlohmann::json rows = nlohmann::json::array();
+    for (const SelfTestRow& w : r.rows) {
+        nlohmann::json x;
+        x["effect"] = w.effect;
+        x["size_parameter"] = w.sizeParam;
+        x["unit"] = w.unit;
+        x["size"] = w.size;
+        if (w.level >= 0) x["level"] = w.level;
+        else x["level"] = nullptr;
+        x["signal_rms"] = w.signalRms;
+        x["snr"] = w.snr;
+        x["visible_snr"] = w.visibleSnr;
+        x["replicas"] = w.replicas;
+        x["detected"] = w.detected;
+        x["confused"] = w.confused;
+        x["missed"] = w.missed;
+        x["detection_rate"] = w.replicas > 0 ? static_cast<double>(w.detected) / w.replicas : 0.0;
+        x["confused_with"] = w.confusedWith;
+        if (!w.note.empty()) x["note"] = w.note;
+        rows.push_back(x);
+    }
+    j["rows"] = rows;
+    return j;
+}
+
+}  // namespace stickslip::identify
