@@ -1,5 +1,7 @@
 #include "identify_panel.hpp"
 
+#include "self_test_view.hpp"
+
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
@@ -703,6 +705,9 @@ QWidget* IdentifyPanel::buildIdentifyTab() {
     form->addRow(tr("Loop"), row);
     v->addLayout(form);
 
+    selfTest_ = new SelfTestView(w);
+    v->addWidget(selfTest_);
+
     auto* runRow = new QHBoxLayout;
     idRun_ = new QPushButton(tr("Identify"), w);
     idCancel_ = new QPushButton(tr("Cancel"), w);
@@ -795,10 +800,16 @@ void IdentifyPanel::startIdentify() {
         idStatus_->setText(tr("<span style='color:#b00000'>Choose at least one candidate effect.</span>"));
         return;
     }
+    IdentifyRequest req = r;
+    QString why;
+    if (!selfTest_->apply(req.options, why)) {
+        idStatus_->setText(tr("<span style='color:#b00000'>%1</span>").arg(why.toHtmlEscaped()));
+        return;
+    }
     setBusy(true, false);
     unexplained_->clear();
     idStatus_->setText(tr("Identifying…"));
-    worker_->startIdentify(r);
+    worker_->startIdentify(req);
 }
 
 void IdentifyPanel::onIdentifyFinished(const IdentifyOutcome& o) {
@@ -863,6 +874,8 @@ void IdentifyPanel::onIdentifyFinished(const IdentifyOutcome& o) {
     }
     candidates_->resizeColumnsToContents();
     fitHeight(candidates_, 4);
+
+    selfTest_->show(r.selfTest);
 
     shown_ = Shown::Identify;
     refreshPlots();

@@ -12,6 +12,7 @@
 #include "identify_worker.hpp"
 
 class QCheckBox;
+class SelfTestView;
 class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
@@ -79,6 +80,7 @@ public:
     QTableWidget* beforeAfterTable() const { return beforeAfter_; }
     QTableWidget* effectsTable() const { return effects_; }
     QTableWidget* candidateTable() const { return candidates_; }
+    SelfTestView* selfTestView() const { return selfTest_; }
     QLabel* unexplainedLabel() const { return unexplained_; }
     QTabWidget* controlTabs() const { return controls_; }
     QTabWidget* plotTabs() const { return plots_; }
@@ -166,6 +168,7 @@ private:
     QTableWidget* beforeAfter_ = nullptr;
     QTableWidget* effects_ = nullptr;
     QTableWidget* candidates_ = nullptr;
+    SelfTestView* selfTest_ = nullptr;
     QLabel* unexplained_ = nullptr;
     // Plots
     QComboBox* plotRun_ = nullptr;

@@ -3,6 +3,7 @@
 #include "self_test.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 
@@ -240,7 +241,9 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         if (!hi.ok || cancelled()) { job.inj = hi; return; }
         if (hi.rms < target) {
             job.inj = std::move(hi);
-            job.inj.note = "the largest physical size gives only " + std::to_string(job.inj.rms / out.noiseRms) + " of the level";
+            char buf[96];
+            std::snprintf(buf, sizeof buf, "at the physical bound: SNR only %.3g", job.inj.rms / out.noiseRms);
+            job.inj.note = buf;
             return;
         }
         double lo = 0.0, up = 1.0;

@@ -21,6 +21,7 @@
 #include "core/identify/identify.hpp"
 #include "core/identify/preprocess.hpp"
 #include "identify_panel.hpp"
+#include "self_test_view.hpp"
 #include "main_window.hpp"
 #include "widgets/series_plot.hpp"
 
@@ -268,6 +269,58 @@ private slots:
         IdentifyPanel empty;
         QVERIFY(!empty.exportIdentifyReport(dir.filePath("x.json"), dir.filePath("x.html"), &why));
         QVERIFY(!QFile::exists(dir.filePath("x.json")));
+    }
+
+    // The recovery self-test from the panel: bad levels are refused before any job starts; run
+    // with the loop on the worker, its table shows what the core computes for the same options.
+    void selfTestRunsFromThePanel() {
+        IdentifyPanel p;
+        QVERIFY(p.loadRuns(damperRuns()));
+        p.setCandidates({"direction_asymmetry", "normal_load_mu"});
+        p.setMaxEffects(1);
+        p.setMultistarts(1);
+        SelfTestView* st = p.selfTestView();
+        st->setEnabledTest(true);
+        st->setLevels("0.5, abc");
+        p.identifyRunButton()->click();
+        QVERIFY(!p.worker()->isBusy());
+        QVERIFY2(p.identifyStatus().contains("abc"), qPrintable(p.identifyStatus()));
+        st->setLevels("0.5, 1");
+        QSignalSpy shown(&p, &IdentifyPanel::identifyShown);
+        p.identifyRunButton()->click();
+        QVERIFY(p.identifyCancelButton()->isEnabled());
+        QVERIFY(shown.wait(120000));
+        const SelfTestResult& r = p.lastIdentify().result.selfTest;
+        QVERIFY2(r.ran && r.ok, r.message.c_str());
+        // Two effects × two levels; levels beyond an effect's physical range share one row.
+        QVERIFY2(r.rows.size() >= 2 && r.rows.size() <= 4, qPrintable(QString::number(r.rows.size())));
+
+        IdentifyOptions opt = p.identifyRequest().options;
+        QString why;
+        QVERIFY(st->apply(opt, why));
+        QCOMPARE(opt.selfTest.replicas, 20);
+        std::vector<IdentifyRun> runs;
+        for (const CleanRun& c : cleanDirect(damperRuns(), p.identifyRequest().runs.pre)) {
+            IdentifyRun ir;
+            std::string e;
+            QVERIFY(makeIdentifyRun(c, SetupKind::Prescribed, ir, &e));
+            runs.push_back(std::move(ir));
+        }
+        const IdentifyResult core = identifyEffects(std::move(runs), opt);
+        QVERIFY(core.selfTest.ok);
+        QTableWidget* t = st->table();
+        QCOMPARE(t->rowCount(), static_cast<int>(core.selfTest.rows.size()));
+        for (size_t i = 0; i < core.selfTest.rows.size(); ++i) {
+            const SelfTestRow& w = core.selfTest.rows[i];
+            QCOMPARE(r.rows[i].size, w.size);
+            QCOMPARE(cell(t, static_cast<int>(i), 0), QString::fromStdString(w.effect));
+            QCOMPARE(cell(t, static_cast<int>(i), 4), QStringLiteral("%1/%2").arg(w.detected).arg(w.replicas));
+        }
+        QVERIFY(st->summary()->text().contains(QString::number(core.selfTest.falseAlarmReplicas)));
+        if (const QByteArray shot = qgetenv("SELF_TEST_SHOT"); !shot.isEmpty()) {
+            p.resize(900, 1400);
+            QVERIFY(st->grab().save(QString::fromLocal8Bit(shot)));
+        }
     }
 
     // The panel lives in the main window's "Identify" dock, opened from Data ▸ Identify….
