@@ -172,6 +172,8 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
             sc.fitNrmse = f.count > 0 ? std::sqrt(f.ss / f.count) : 0.0;
             for (const ParamEstimate& p : f.estimates)
                 if (p.name.rfind(c + ".", 0) == 0) sc.params.push_back({p.name.substr(c.size() + 1), p.value, p.stderr_});
+            for (const std::string& added : spec.effects)
+                sc.sizeCorrelation[added] = sizeCorrelation(f.fit, added, c);
             // An effect whose size parameter (the first in its catalogue entry) ends on a physical
             // bound has not been identified (the fit wants it outside the physical range, or the
             // effect has vanished): the improvement it brings is not evidence for this effect.

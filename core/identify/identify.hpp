@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -174,6 +175,9 @@ struct CandidateScore {
     // (1b) noise null: the real gain in the sum of squares and the null's (1 − α) quantile.
     double gain = kNoTest, nullGain = kNoTest;
     int nullReplicas = 0;
+    // Correlation of this candidate's size parameter with the size parameter of each effect
+    // already in the model, in the joint fit (Jacobian at the optimum): near ±1, the two trade off.
+    std::map<std::string, double> sizeCorrelation;
     static constexpr double kNoTest = -1.0;
     std::string residual = "equation_error";  // dynamics: "equation_error" or "segments"; prescribed: "prescribed"
 };

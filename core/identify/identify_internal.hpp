@@ -155,6 +155,9 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
 void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& opt, Prepared& p);
 
 double bic(double ss, double n, double neffCap, int p);
+// Correlation of the size parameters (params[0]) of effects a and b in a fit that has both
+// free (NaN when either is not free or the fit has no correlation matrix).
+double sizeCorrelation(const FitResult& fit, const std::string& a, const std::string& b);
 // The value of an effect's size parameter q at which the effect is absent in this data set's
 // model (q.vanishing, except where a baseline parameter covers part of the range).
 double effectVanishes(const Context& cx, const std::string& effect, const EffectParam& q);

@@ -110,6 +110,11 @@ nlohmann::json toJson(const IdentifyResult& r) {
                                                                             {"stderr_kind", c.sizeStderrKind},
                                                                             {"critical_t", num(c.sizeCritical)}}},
                          {"parameters", toJson(c.params)},
+                         {"size_correlation_with_added", [&] {
+                              nlohmann::json o = nlohmann::json::object();
+                              for (const auto& [n, v] : c.sizeCorrelation) o[n] = num(v);
+                              return o;
+                          }()},
                          {"rejected_because", c.accepted ? nlohmann::json(nullptr) : nlohmann::json(c.reason)}});
     j["candidates"] = cands;
     j["diagnostics"] = {{"before", toJson(r.diagnosticsBefore, true)}, {"after", toJson(r.diagnosticsAfter, true)}};

@@ -22,6 +22,18 @@ double effectVanishes(const Context& cx, const std::string& effect, const Effect
     return q.vanishing;
 }
 
+double sizeCorrelation(const FitResult& fit, const std::string& a, const std::string& b) {
+    auto sizeName = [](const std::string& e) {
+        EffectInfo info;
+        return findEffect(e, info) && !info.params.empty() ? e + "." + info.params.front().name : std::string();
+    };
+    const auto ia = std::find(fit.freeNames.begin(), fit.freeNames.end(), sizeName(a));
+    const auto ib = std::find(fit.freeNames.begin(), fit.freeNames.end(), sizeName(b));
+    const size_t n = fit.freeNames.size();
+    if (ia == fit.freeNames.end() || ib == fit.freeNames.end() || fit.correlation.size() != n * n) return kNaN;
+    return fit.correlation[static_cast<size_t>(ia - fit.freeNames.begin()) * n + static_cast<size_t>(ib - fit.freeNames.begin())];
+}
+
 double bic(double ss, double n, double neffCap, int p) {
     const double neff = std::max(std::min(n, neffCap), 2.0);
     return neff * std::log(std::max(ss, 1e-300) / std::max(n, 1.0)) + p * std::log(neff);

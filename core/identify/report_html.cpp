@@ -95,6 +95,33 @@ std::string svgLinePlot(const std::vector<SvgSeries>& series, const std::string&
     return o.str();
 }
 
+// The recovery self-test's table (self_test.hpp), when it ran.
+static void writeSelfTest(std::ostream& o, const SelfTestResult& st) {
+    if (!st.ran) return;
+    o << "<h3>Recovery self-test</h3>";
+    if (!st.ok) {
+        o << "<p>Not completed: " << htmlEscape(st.message) << "</p>\n";
+        return;
+    }
+    o << "<p>Replicas of these runs: fitted baseline + the effect at the size shown (simulated) + AR(1) noise of the "
+         "baseline residual (RMS " << fmt(st.noiseRms, "%.4g") << "); the selection's &Delta;BIC and noise-null tests in the "
+         "linearised refit (n<sub>eff</sub> " << fmt(st.neff, "%.0f") << "); the held-out and size tests are not applied, so "
+         "detection rates are upper bounds for the full loop. False alarms on " << st.falseAlarmReplicas
+      << " replicas without an effect: <b>" << st.falseAlarms << "</b>.</p>"
+         "<table><tr><th>effect</th><th>size</th><th>SNR</th><th>visible SNR</th><th>detected</th><th>confused</th>"
+         "<th>missed</th><th>note</th></tr>\n";
+    for (const SelfTestRow& w : st.rows) {
+        std::string confused;
+        for (const auto& [name, n] : w.confusedWith) confused += (confused.empty() ? "" : ", ") + name + " &times;" + std::to_string(n);
+        o << "<tr><td class=l>" << htmlEscape(w.effect) << "</td><td>" << htmlEscape(w.sizeParam) << " = " << fmt(w.size, "%.4g")
+          << " " << htmlEscape(w.unit) << "</td><td>" << fmt(w.snr, "%.2f") << "</td><td>" << fmt(w.visibleSnr, "%.2f")
+          << "</td><td>" << w.detected << "/" << w.replicas << "</td><td>" << w.confused
+          << (confused.empty() ? "" : " (" + confused + ")") << "</td><td>" << w.missed << "</td><td class=l>"
+          << htmlEscape(w.note) << "</td></tr>\n";
+    }
+    o << "</table>\n";
+}
+
 std::string renderHtmlReport(const IdentifyResult& r) {
     std::ostringstream o;
     o << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>StickSlip Lab: identify report</title>\n"
@@ -158,7 +185,9 @@ std::string renderHtmlReport(const IdentifyResult& r) {
           << (sz ? fmt(c.sizeCritical, "%.2f") : "&ndash;") << "</td><td class=l>"
           << (c.accepted ? "added" : htmlEscape(c.reason)) << "</td></tr>\n";
     }
-    o << "</table>\n<h3>Parameters</h3><table><tr><th>parameter</th><th>baseline</th><th>&plusmn;</th></tr>\n";
+    o << "</table>\n";
+    writeSelfTest(o, r.selfTest);
+    o << "<h3>Parameters</h3><table><tr><th>parameter</th><th>baseline</th><th>&plusmn;</th></tr>\n";
     for (const ParamEstimate& p : r.baseline)
         o << "<tr><td class=l>" << htmlEscape(p.name) << "</td><td>" << fmt(p.value) << "</td><td>" << fmt(p.stderr_) << "</td></tr>\n";
     o << "</table><table><tr><th>parameter</th><th>final</th><th>&plusmn;</th></tr>\n";

@@ -2,6 +2,10 @@
 // with finite values, its NRMSE values agree with the --residuals CSV, and bad input exits
 // non-zero with a message naming file:line:column or the offending field.
 #include <QProcess>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QFile>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -238,6 +242,42 @@ private slots:
         r = runCli({"fit", "--data", good, "--model", "magic", "--report", dir.filePath("d.json")});
         QVERIFY(r.exitCode != 0);
         QVERIFY2(r.err.contains("--model") && r.err.contains("magic"), r.err.constData());
+    }
+
+    // identify --self-test: bad self-test options exit 2 naming the option and the value, before
+    // any fit; a run writes the table to stdout and the report's self_test block.
+    void identifySelfTest() {
+        QTemporaryDir dir;
+        const QStringList base = {"identify", "--quiet", "--data", damper("1Hz_30lb_1in.csv"), damper("0.5Hz_36lb_1in.csv"),
+                                  "--setup", "prescribed", "--max-effects", "0", "--multistarts", "1", "--self-test"};
+        struct Bad { QStringList extra; const char* says; };
+        for (const Bad& b : {Bad{{"--self-test-replicas", "0"}, "--self-test-replicas = 0"},
+                             Bad{{"--self-test-levels", "0.5,-1"}, "level = -1"},
+                             Bad{{"--self-test-size", "backlash"}, "--self-test-size 'backlash'"},
+                             Bad{{"--self-test-size", "no_such=1"}, "no_such"}}) {
+            const QString rep = dir.filePath("bad.json");
+            const Result r = runCli(base + b.extra + QStringList{"--report", rep});
+            QVERIFY2(r.exitCode == 2, r.err.constData());
+            QVERIFY2(r.err.contains(b.says), r.err.constData());
+            QVERIFY(!QFile::exists(rep));
+        }
+        const QString rep = dir.filePath("st.json");
+        const Result r = runCli(base + QStringList{"--candidates", "normal_load_mu,backlash", "--self-test-replicas", "5",
+                                                   "--self-test-levels", "0.5,1", "--self-test-size", "backlash=1e-3",
+                                                   "--report", rep});
+        QVERIFY2(r.exitCode == 0, r.err.constData());
+        QVERIFY2(r.out.contains("self-test (5 replicas per row") && r.out.contains("false alarms on 10 replicas"), r.out.constData());
+        QFile f(rep);
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        const QJsonObject st = QJsonDocument::fromJson(f.readAll()).object().value("self_test").toObject();
+        QVERIFY(st.value("ok").toBool());
+        const QJsonArray rows = st.value("rows").toArray();
+        QVERIFY(rows.size() >= 2 && rows.size() <= 3);  // normal_load_mu at two levels (or one at its bound), backlash stated
+        const QJsonObject last = rows.last().toObject();
+        QCOMPARE(last.value("effect").toString(), QString("backlash"));
+        QCOMPARE(last.value("size").toDouble(), 1e-3);
+        QVERIFY(last.value("level").isNull());
+        QCOMPARE(last.value("replicas").toInt(), 5);
     }
 
     // Measured data beyond the physical ranges (core/io/channel_ranges.hpp) is refused by the
