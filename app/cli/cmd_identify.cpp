@@ -119,6 +119,10 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
               << "\nafter:  fit NRMSE " << res.after.fitNrmse << ", held-out NRMSE " << res.after.validationNrmse
               << "\nunexplained structure: " << (res.unexplained ? "yes" : "no") << "\nwall time " << res.wallTime_s
               << " s, " << res.fits << " fits\n";
+    for (const auto& e : res.effectsAdded)
+        for (const std::string& c : e.confoundedWith)
+            std::cout << "confounded: " << c << " trades off with " << e.name << " (not added; " << e.name
+                      << "'s size may stand for both)\n";
     printSelfTest(res.selfTest);
     if (res.selfTest.ran && !res.selfTest.ok) return fail("self-test: " + res.selfTest.message, kRunFailed);
     exitCode = kOk;
@@ -151,6 +155,9 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
                     "level of the one-sided paired test over held-out runs an effect must pass, in (0, 1)")->capture_default_str();
     cmd->add_option("--identifiability-alpha", o->req.options.identifiabilityAlpha,
                     "level of the size test (effect parameter vs its jackknife s.e.), in (0, 1)")->capture_default_str();
+    cmd->add_option("--confounded-vif", o->req.options.confoundedVif,
+                    "a candidate whose size trades off with an added effect's (variance inflation 1/(1 - r^2) above this) "
+                    "is reported confounded, not added; > 1")->capture_default_str();
     cmd->add_option("--decimate", o->req.options.decimate, "use every n-th sample")->capture_default_str();
     cmd->add_option("--substeps", o->req.options.substeps, "prescribed: law steps per used sample")->capture_default_str();
     cmd->add_option("--multistarts", o->req.options.multistarts, "starting points per fit")->capture_default_str();

@@ -59,6 +59,10 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
     res.nullReplicas = opt.nullReplicas;
     res.bicMargin = opt.bicMargin;
     res.identifiabilityAlpha = opt.identifiabilityAlpha;
+    if (!(opt.confoundedVif > 1.0)) {
+        res.message = "confoundedVif = " + std::to_string(opt.confoundedVif) + " must be > 1";
+        return res;
+    }
     if (!(opt.nullAlpha > 0 && opt.nullAlpha < 1) || opt.nullReplicas < 0 || opt.nullReplicas > 100000) {
         res.message = "nullAlpha = " + std::to_string(opt.nullAlpha) + " must be in (0, 1) and nullReplicas = " +
                       std::to_string(opt.nullReplicas) + " in [0, 100000]";
@@ -172,8 +176,7 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
             sc.fitNrmse = f.count > 0 ? std::sqrt(f.ss / f.count) : 0.0;
             for (const ParamEstimate& p : f.estimates)
                 if (p.name.rfind(c + ".", 0) == 0) sc.params.push_back({p.name.substr(c.size() + 1), p.value, p.stderr_});
-            for (const std::string& added : spec.effects)
-                sc.sizeCorrelation[added] = sizeCorrelation(f.fit, added, c);
+            sc.sizeCorrelation = sizeCorrelations(f.fit, c);
             // An effect whose size parameter (the first in its catalogue entry) ends on a physical
             // bound has not been identified (the fit wants it outside the physical range, or the
             // effect has vanished): the improvement it brings is not evidence for this effect.
@@ -218,6 +221,16 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
             if (chosen >= 0) {
                 sc.reason = "dBIC = " + std::to_string(sc.deltaBic) + " but " + tried[chosen].sc.name + " was added in round " +
                             std::to_string(round);
+                continue;
+            }
+            // (0) Confounded with an effect already in the model: the two trade off in the joint fit.
+            if (const std::string with = confoundedWith(sc, spec.effects, opt.confoundedVif); !with.empty()) {
+                const double r = sc.sizeCorrelation.at(with);
+                sc.confoundedWith = with;
+                sc.reason = "confounded with " + with + ": their sizes trade off in the joint fit (correlation " +
+                            std::to_string(r) + ", variance inflation " + std::to_string(1.0 / std::max(1.0 - r * r, 1e-300)) +
+                            " > " + std::to_string(opt.confoundedVif) + "); dBIC " + std::to_string(sc.deltaBic) +
+                            " not credited to either";
                 continue;
             }
             // (1b) The gain against what noise alone gives on these runs (noise_null.hpp).
@@ -270,7 +283,11 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
             me = std::move(e);
             heldOutRef = ref->validationNrmse;
         }
-        for (const Tried& t : tried) scores[t.sc.name] = t.sc;
+        for (const Tried& t : tried) {
+            scores[t.sc.name] = t.sc;
+            for (AddedEffect& ae : res.effectsAdded)
+                if (ae.name == t.sc.confoundedWith) ae.confoundedWith.push_back(t.sc.name);
+        }
         if (chosen < 0) break;
         CandidateScore& best = tried[chosen].sc;
         const FitOutcome& bestFit = tried[chosen].fit;

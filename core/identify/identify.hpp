@@ -116,6 +116,11 @@ struct IdentifyOptions {
     // the linearised candidate model. 0 replicas: off.
     double nullAlpha = 0.05;
     int nullReplicas = 200;
+    // (0) confounding: a candidate whose size parameter trades off with an added effect's in
+    // their joint fit — variance inflation 1/(1 − r²) of the two sizes above this, r their
+    // correlation at the optimum — is reported "confounded with" that effect and not added:
+    // the data cannot tell the two apart. 10 is the textbook collinearity threshold (|r| > 0.949).
+    double confoundedVif = 10.0;
     double heldOutAlpha = 0.05;      // (2) one-sided level of the paired held-out test
     double identifiabilityAlpha = 0.05;  // (3) two-sided level of the size test
     int decimate = 0;                // use every n-th sample in the fits; 0: auto (prescribed ≥ 128
@@ -175,9 +180,11 @@ struct CandidateScore {
     // (1b) noise null: the real gain in the sum of squares and the null's (1 − α) quantile.
     double gain = kNoTest, nullGain = kNoTest;
     int nullReplicas = 0;
-    // Correlation of this candidate's size parameter with the size parameter of each effect
-    // already in the model, in the joint fit (Jacobian at the optimum): near ±1, the two trade off.
+    // Correlation of this candidate's size parameter with every other free parameter of its fit
+    // (Jacobian at the optimum): with each added effect (keyed by the effect's name: its size
+    // parameter) and each baseline parameter. Near ±1 the two trade off.
     std::map<std::string, double> sizeCorrelation;
+    std::string confoundedWith;  // the added effect it trades off with (selection test 0), if any
     static constexpr double kNoTest = -1.0;
     std::string residual = "equation_error";  // dynamics: "equation_error" or "segments"; prescribed: "prescribed"
 };
@@ -188,6 +195,9 @@ struct AddedEffect {
     std::vector<SignalCorrelation> pointedBy;  // the effect's signals in the residual before it was added
     double deltaBic = 0;
     double heldOutBefore = 0, heldOutAfter = 0;
+    // Candidates that trade off with this effect (selection test 0): the data cannot tell them
+    // apart from it, so this effect's size may stand for them too.
+    std::vector<std::string> confoundedWith;
 };
 
 // Per run, for plots: measured and predicted force before and after (fit window).

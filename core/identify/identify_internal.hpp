@@ -155,9 +155,13 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
 void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& opt, Prepared& p);
 
 double bic(double ss, double n, double neffCap, int p);
-// Correlation of the size parameters (params[0]) of effects a and b in a fit that has both
-// free (NaN when either is not free or the fit has no correlation matrix).
-double sizeCorrelation(const FitResult& fit, const std::string& a, const std::string& b);
+// Correlation of effect e's size parameter (params[0]) with every other free parameter of the
+// fit that is not e's own, keyed by the parameter's name, or by the effect's name for another
+// effect's size parameter (empty when e's size is not free or the fit has no correlation matrix).
+std::map<std::string, double> sizeCorrelations(const FitResult& fit, const std::string& e);
+// The added effect whose size trades off with the candidate's in their joint fit: the one with
+// the largest variance inflation 1/(1 − r²) of the two sizes above maxVif (empty: none).
+std::string confoundedWith(const CandidateScore& sc, const std::vector<std::string>& added, double maxVif);
 // The value of an effect's size parameter q at which the effect is absent in this data set's
 // model (q.vanishing, except where a baseline parameter covers part of the range).
 double effectVanishes(const Context& cx, const std::string& effect, const EffectParam& q);

@@ -75,7 +75,8 @@ nlohmann::json toJson(const IdentifyResult& r) {
                          {"diagnostics", {{"correlations_before", pointed}}},
                          {"delta_bic", num(e.deltaBic)},
                          {"held_out_nrmse_before", num(e.heldOutBefore)},
-                         {"held_out_nrmse_after", num(e.heldOutAfter)}});
+                         {"held_out_nrmse_after", num(e.heldOutAfter)},
+                         {"confounded_with", e.confoundedWith}});
     }
     j["effects_added"] = added;
     nlohmann::json cands = nlohmann::json::array();
@@ -110,11 +111,12 @@ nlohmann::json toJson(const IdentifyResult& r) {
                                                                             {"stderr_kind", c.sizeStderrKind},
                                                                             {"critical_t", num(c.sizeCritical)}}},
                          {"parameters", toJson(c.params)},
-                         {"size_correlation_with_added", [&] {
+                         {"size_correlation", [&] {
                               nlohmann::json o = nlohmann::json::object();
                               for (const auto& [n, v] : c.sizeCorrelation) o[n] = num(v);
                               return o;
                           }()},
+                         {"confounded_with", c.confoundedWith.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.confoundedWith)},
                          {"rejected_because", c.accepted ? nlohmann::json(nullptr) : nlohmann::json(c.reason)}});
     j["candidates"] = cands;
     j["diagnostics"] = {{"before", toJson(r.diagnosticsBefore, true)}, {"after", toJson(r.diagnosticsAfter, true)}};

@@ -22,16 +22,40 @@ double effectVanishes(const Context& cx, const std::string& effect, const Effect
     return q.vanishing;
 }
 
-double sizeCorrelation(const FitResult& fit, const std::string& a, const std::string& b) {
-    auto sizeName = [](const std::string& e) {
+std::map<std::string, double> sizeCorrelations(const FitResult& fit, const std::string& e) {
+    std::map<std::string, double> out;
+    auto sizeName = [](const std::string& effect) {
         EffectInfo info;
-        return findEffect(e, info) && !info.params.empty() ? e + "." + info.params.front().name : std::string();
+        return findEffect(effect, info) && !info.params.empty() ? effect + "." + info.params.front().name : std::string();
     };
-    const auto ia = std::find(fit.freeNames.begin(), fit.freeNames.end(), sizeName(a));
-    const auto ib = std::find(fit.freeNames.begin(), fit.freeNames.end(), sizeName(b));
     const size_t n = fit.freeNames.size();
-    if (ia == fit.freeNames.end() || ib == fit.freeNames.end() || fit.correlation.size() != n * n) return kNaN;
-    return fit.correlation[static_cast<size_t>(ia - fit.freeNames.begin()) * n + static_cast<size_t>(ib - fit.freeNames.begin())];
+    const auto own = std::find(fit.freeNames.begin(), fit.freeNames.end(), sizeName(e));
+    if (own == fit.freeNames.end() || fit.correlation.size() != n * n) return out;
+    const size_t i = static_cast<size_t>(own - fit.freeNames.begin());
+    for (size_t j = 0; j < n; ++j) {
+        const std::string& name = fit.freeNames[j];
+        if (j == i || name.rfind(e + ".", 0) == 0) continue;
+        const size_t dot = name.find('.');
+        const std::string key = dot != std::string::npos && sizeName(name.substr(0, dot)) == name ? name.substr(0, dot) : name;
+        out[key] = fit.correlation[i * n + j];
+    }
+    return out;
+}
+
+std::string confoundedWith(const CandidateScore& sc, const std::vector<std::string>& added, double maxVif) {
+    std::string worst;
+    double worstVif = maxVif;
+    for (const std::string& a : added) {
+        const auto it = sc.sizeCorrelation.find(a);
+        if (it == sc.sizeCorrelation.end() || !std::isfinite(it->second)) continue;
+        const double r2 = it->second * it->second;
+        const double vif = r2 < 1.0 ? 1.0 / (1.0 - r2) : std::numeric_limits<double>::infinity();
+        if (vif > worstVif) {
+            worstVif = vif;
+            worst = a;
+        }
+    }
+    return worst;
 }
 
 double bic(double ss, double n, double neffCap, int p) {

@@ -22,19 +22,22 @@ inline ExtendedModel trueModel() {
     return m;
 }
 
-// Four runs (A, f, t_N differ) of a slip history with dwells at the turning points:
-// g = A clip(1.4 sin ωt, −1, 1), 1 kHz, `seconds` long, force noise σ = noise_N.
-inline std::vector<IdentifyRun> makeRuns(const ExtendedModel& truth, double seconds, double noise_N, unsigned seed) {
-    struct Cfg { double A, f, tN; };
-    const Cfg cfgs[] = {{2e-3, 2.0, 5.0}, {3e-3, 1.5, 8.0}, {1.5e-3, 3.0, 11.0}, {2.5e-3, 2.5, 6.5}};
+struct RunConfig { double A, f, tN; };
+
+// One run per configuration, in recording order (wear accumulates over them), of a slip history
+// with dwells at the turning points: g = A clip(1.4 sin ωt, −1, 1), 1 kHz, `seconds` long, force
+// noise σ = noise_N; the load reference is the mean t_N (as the loop's).
+inline std::vector<IdentifyRun> makeRunsFrom(const ExtendedModel& truth, const std::vector<RunConfig>& cfgs, double seconds,
+                                             double noise_N, unsigned seed) {
     std::mt19937 rng(seed);
     std::normal_distribution<double> nd(0.0, 1.0);
     std::vector<IdentifyRun> runs;
-    double slip = 0;
+    double slip = 0, tNsum = 0;
+    for (const RunConfig& c : cfgs) tNsum += c.tN;
     ExtendedModel m = truth;
-    m.tNref_N = (5.0 + 8.0 + 11.0 + 6.5) / 4;  // the loop uses the mean load as reference too
+    m.tNref_N = tNsum / static_cast<double>(cfgs.size());
     int k = 0;
-    for (const Cfg& c : cfgs) {
+    for (const RunConfig& c : cfgs) {
         IdentifyRun r;
         r.file = "synthetic_run_" + std::to_string(++k);
         r.setup = SetupKind::Prescribed;
@@ -55,6 +58,12 @@ inline std::vector<IdentifyRun> makeRuns(const ExtendedModel& truth, double seco
         runs.push_back(std::move(r));
     }
     return runs;
+}
+
+// Four runs whose A, f and t_N differ.
+inline std::vector<IdentifyRun> makeRuns(const ExtendedModel& truth, double seconds, double noise_N, unsigned seed) {
+    return makeRunsFrom(truth, {{2e-3, 2.0, 5.0}, {3e-3, 1.5, 8.0}, {1.5e-3, 3.0, 11.0}, {2.5e-3, 2.5, 6.5}}, seconds, noise_N,
+                        seed);
 }
 
 inline IdentifyOptions testOptions() {

@@ -36,6 +36,41 @@ void expectFound(const IdentifyResult& r, const std::string& name) {
 class TestIdentifyLaw : public QObject {
     Q_OBJECT
 private slots:
+    // Two effects that trade off: runs recorded in order of rising load, so the slip
+    // accumulated before each run grows with its load, and a load dependence of μ and a wear
+    // drift both explain the force's rise over the runs (size correlation −0.98 in the joint
+    // fit). The loop adds one and reports the other as confounded with it, not both.
+    void confoundedEffectsAreNotBothAdded() {
+        auto m = synth::trueModel();
+        m.effects.normalLoadMu = NormalLoadMu{0.01};
+        m.effects.wearDrift = WearDrift{0.5};
+        std::vector<synth::RunConfig> cfgs;
+        for (double tN : {5.0, 7.0, 9.0, 11.0, 13.0}) cfgs.push_back({2e-3, 2.0, tN});
+        auto o = synth::testOptions();
+        o.maxEffects = 3;
+        o.candidates = {"normal_load_mu", "wear_drift", "direction_asymmetry"};
+        const IdentifyResult r = identifyEffects(synth::makeRunsFrom(m, cfgs, 2.0, 0.02, 3), o);
+        QVERIFY2(r.ok, r.message.c_str());
+        QCOMPARE(r.effectsAdded.size(), size_t(1));
+        const AddedEffect& added = r.effectsAdded.front();
+        const std::string other = added.name == "normal_load_mu" ? "wear_drift" : "normal_load_mu";
+        QVERIFY2(added.name == "normal_load_mu" || added.name == "wear_drift", added.name.c_str());
+        QCOMPARE(added.confoundedWith, std::vector<std::string>{other});
+        bool reported = false;
+        for (const CandidateScore& c : r.candidates)
+            if (c.name == other) {
+                reported = true;
+                QCOMPARE(c.confoundedWith, added.name);
+                QVERIFY(std::abs(c.sizeCorrelation.at(added.name)) > 0.949);
+                QVERIFY2(c.reason.find("confounded with " + added.name) == 0, c.reason.c_str());
+                QVERIFY(!c.accepted);
+                qInfo("%s confounded with %s: size correlation %.3f (dBIC %.1f)", other.c_str(), added.name.c_str(),
+                      c.sizeCorrelation.at(added.name), c.deltaBic);
+            }
+        QVERIFY(reported);
+        const auto j = toJson(r);
+        QCOMPARE(j["effects_added"][0]["confounded_with"][0].get<std::string>(), other);
+    }
     void noneAddsNothing() {
         const IdentifyResult r = runLoop(synth::trueModel(), 1);
         QVERIFY2(r.ok, r.message.c_str());

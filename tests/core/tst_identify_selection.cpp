@@ -109,6 +109,21 @@ private slots:
     }
 
     // Which parameters the law run along the measured slip sees.
+    // Selection test 0: the added effect whose size trades off most with the candidate's, when
+    // the variance inflation 1/(1 − r²) exceeds the limit; NaN correlations decide nothing.
+    void confoundedWithTakesTheLargestInflation() {
+        CandidateScore sc;
+        sc.sizeCorrelation = {{"a", 0.9}, {"b", -0.99}, {"c", 0.97}, {"mu", 0.999}};
+        QCOMPARE(confoundedWith(sc, {"a"}, 10.0), std::string());         // VIF 5.3
+        QCOMPARE(confoundedWith(sc, {"a", "c"}, 10.0), std::string("c"));  // VIF 16.9
+        QCOMPARE(confoundedWith(sc, {"a", "b", "c"}, 10.0), std::string("b"));
+        QCOMPARE(confoundedWith(sc, {"a", "b", "c"}, 100.0), std::string());
+        QCOMPARE(confoundedWith(sc, {}, 10.0), std::string());  // baseline parameters (mu) are not effects
+        sc.sizeCorrelation["b"] = std::numeric_limits<double>::quiet_NaN();
+        QCOMPARE(confoundedWith(sc, {"b"}, 10.0), std::string());
+        sc.sizeCorrelation["b"] = 1.0;
+        QCOMPARE(confoundedWith(sc, {"b"}, 10.0), std::string("b"));
+    }
     void lawParametersAreTheContactOnes() {
         for (const char* n : {"mu", "C1", "eta", "Dc", "vc", "epsT", "backlash.halfWidth_m", "frictional_lag.tau_s"})
             QVERIFY2(lawParameter(n), n);
