@@ -34,6 +34,8 @@ using Vec = Eigen::VectorXd;
 // The linearised selection of one candidate: its bases, parameter count and null quantile.
 struct LinearCandidate {
     std::string name;
+    Eigen::MatrixXd Jc;                  // the effect's columns
+    std::vector<Eigen::Index> baseCols;  // the baseline's columns it is fitted with (indices into J0)
     ProjectionBases bases;
     int params = 0;
     double nullQuantile = 0;
@@ -144,14 +146,37 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
     for (const FitParameter& p : ps0)
         if (p.free) baseNames.push_back(p.name);
     const Eigen::MatrixXd J0 = residualJacobian(cx, spec, base.values, fitIdx, ps0, baseNames, n);
-    Selector sel;
-    sel.base = projectionBases(Eigen::MatrixXd(static_cast<Eigen::Index>(n), 0), J0);
-    sel.baseParams = static_cast<int>(baseNames.size());
-    sel.count = count;
-    sel.cap = neffCap;
-    sel.margin = opt.bicMargin;
-    sel.useNull = opt.nullReplicas > 0;
     const uint64_t nullSeed = opt.seed + 6151u, replicaSeed = opt.seed + 104729u;
+    // The baseline's columns without `held` (−1: all of them): a baseline parameter on its bound
+    // cannot absorb more.
+    auto baseColumns = [&](const std::vector<Eigen::Index>& cols, Eigen::Index held) {
+        std::vector<Eigen::Index> keep;
+        for (Eigen::Index c : cols)
+            if (c != held) keep.push_back(c);
+        Eigen::MatrixXd M(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(keep.size()));
+        for (size_t j = 0; j < keep.size(); ++j) M.col(static_cast<Eigen::Index>(j)) = J0.col(keep[j]);
+        return M;
+    };
+    std::vector<Eigen::Index> allCols(baseNames.size());
+    for (size_t j = 0; j < allCols.size(); ++j) allCols[j] = static_cast<Eigen::Index>(j);
+    auto makeSelector = [&](Eigen::Index held) {
+        Selector sel;
+        const Eigen::MatrixXd B = baseColumns(allCols, held);
+        sel.base = projectionBases(Eigen::MatrixXd(static_cast<Eigen::Index>(n), 0), B);
+        sel.baseParams = static_cast<int>(B.cols());
+        sel.count = count;
+        sel.cap = neffCap;
+        sel.margin = opt.bicMargin;
+        sel.useNull = opt.nullReplicas > 0;
+        return sel;
+    };
+    auto finish = [&](LinearCandidate& lc, Eigen::Index held) {
+        const Eigen::MatrixXd J0c = baseColumns(lc.baseCols, held);
+        lc.bases = projectionBases(J0c, lc.Jc);
+        lc.params = static_cast<int>(J0c.cols() + lc.Jc.cols());
+        lc.nullQuantile = nullQuantileOf(lc.bases, blocks, n, opt, nullSeed);
+    };
+    const Selector sel = makeSelector(-1);
 
     // The candidate `c` linearised at `vals` (its effect parameters included).
     auto linearise = [&](const std::string& c, const std::map<std::string, double>& vals, LinearCandidate& lc) {
@@ -159,20 +184,16 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         s2.effects.push_back(c);
         const std::vector<FitParameter> ps = parameters(cx, s2, vals);
         std::vector<std::string> effNames;
-        std::vector<Eigen::Index> baseCols;
+        lc.baseCols.clear();
         for (const FitParameter& p : ps) {
             if (!p.free) continue;
             if (p.name.rfind(c + ".", 0) == 0) { effNames.push_back(p.name); continue; }
             const auto it = std::find(baseNames.begin(), baseNames.end(), p.name);
-            if (it != baseNames.end()) baseCols.push_back(static_cast<Eigen::Index>(it - baseNames.begin()));
+            if (it != baseNames.end()) lc.baseCols.push_back(static_cast<Eigen::Index>(it - baseNames.begin()));
         }
-        Eigen::MatrixXd J0c(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(baseCols.size()));
-        for (size_t j = 0; j < baseCols.size(); ++j) J0c.col(static_cast<Eigen::Index>(j)) = J0.col(baseCols[j]);
-        const Eigen::MatrixXd Jc = residualJacobian(cx, s2, vals, fitIdx, ps, effNames, n);
+        lc.Jc = residualJacobian(cx, s2, vals, fitIdx, ps, effNames, n);
         lc.name = c;
-        lc.bases = projectionBases(J0c, Jc);
-        lc.params = static_cast<int>(baseCols.size() + effNames.size());
-        lc.nullQuantile = nullQuantileOf(lc.bases, blocks, n, opt, nullSeed);
+        finish(lc, -1);
     };
     std::vector<LinearCandidate> lin(cands.size());
     for (size_t i = 0; i < cands.size(); ++i) {
@@ -181,7 +202,31 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         linearise(cands[i], effectStart(cx, cands[i], base.values), lin[i]);
     }
 
-    // The injected signal r(baseline + effect at size) − r(baseline) on the compared samples.
+    // The baseline parameter an effect continues beyond the baseline's range (viscous_damping's
+    // ζ in the dynamics set-up): the baseline meets the effect at that parameter's bound, so the
+    // injection is measured from the baseline moved there, and the parameter cannot absorb more.
+    auto heldFor = [&](const std::string& c, Eigen::Index& col, std::vector<double>& rRef) {
+        EffectInfo info;
+        findEffect(c, info);
+        const EffectParam& q = info.params.front();
+        col = -1;
+        if (!q.continues) return true;
+        const auto it = std::find(baseNames.begin(), baseNames.end(), std::string(q.continues));
+        const double bound = effectVanishes(cx, c, q);
+        if (it == baseNames.end() || bound == q.vanishing) return true;
+        col = static_cast<Eigen::Index>(it - baseNames.begin());
+        std::map<std::string, double> vals = base.values;
+        vals[q.continues] = bound;
+        return residualVector(cx, spec, vals, fitIdx, rRef) && rRef.size() == n;
+    };
+    std::vector<Eigen::Index> heldCol(cands.size(), -1);
+    std::vector<std::vector<double>> reference(cands.size());
+    for (size_t i = 0; i < cands.size(); ++i) {
+        if (!heldFor(cands[i], heldCol[i], reference[i])) { out.message = "baseline at the bound of " + cands[i] + " failed"; return out; }
+        if (heldCol[i] < 0) reference[i] = r0;
+    }
+
+    // The injected signal r(baseline + effect at size) − r(reference) on the compared samples.
     auto inject = [&](const std::string& c, double size, Injection& inj) {
         EffectInfo info;
         findEffect(c, info);
@@ -193,10 +238,11 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         inj.size = size;
         inj.ok = residualVector(cx, s2, vals, fitIdx, r) && r.size() == n;
         if (!inj.ok) return;
+        const std::vector<double>& ref = reference[static_cast<size_t>(std::find(cands.begin(), cands.end(), c) - cands.begin())];
         inj.signal.assign(n, 0.0);
         double ss = 0;
         for (size_t k = 0; k < n; ++k)
-            if (used[k]) { inj.signal[k] = r[k] - r0[k]; ss += inj.signal[k] * inj.signal[k]; }
+            if (used[k]) { inj.signal[k] = r[k] - ref[k]; ss += inj.signal[k] * inj.signal[k]; }
         inj.rms = std::sqrt(ss / count);
     };
 
@@ -296,9 +342,16 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         row.size = job.inj.size;
         row.signalRms = job.inj.rms;
         row.snr = job.inj.rms / out.noiseRms;
+        const Eigen::Index held = heldCol[job.cand];
+        const Selector jobSel = held < 0 ? sel : makeSelector(held);
+        std::vector<LinearCandidate> heldLin;  // the other candidates with the held column removed
+        if (held >= 0) {
+            heldLin = lin;
+            for (LinearCandidate& lc : heldLin) finish(lc, held);
+        }
         {
             const Eigen::Map<const Vec> sv(job.inj.signal.data(), static_cast<Eigen::Index>(n));
-            const double vis = std::max(sv.squaredNorm() - squaredNorm(sel.base.Qc, sv), 0.0);
+            const double vis = std::max(sv.squaredNorm() - squaredNorm(jobSel.base.Qc, sv), 0.0);
             row.visibleSnr = std::sqrt(vis / count) / out.noiseRms;
         }
         // The injected candidate linearised where the effect is (a fit would start there after its scan).
@@ -307,13 +360,15 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         vals[c + "." + row.sizeParam] = job.inj.size;
         linearise(c, vals, atSize);
         std::vector<const LinearCandidate*> cs = all;
+        if (held >= 0)
+            for (size_t i = 0; i < heldLin.size(); ++i) cs[i] = &heldLin[i];
         cs[job.cand] = &atSize;
         const Eigen::Map<const Vec> sig(job.inj.signal.data(), static_cast<Eigen::Index>(n));
         for (int b = 0; b < so.replicas; ++b) {
             const std::vector<double> noise = noiseReplica(blocks, n, replicaSeed + static_cast<uint64_t>(b));
             const Vec nv = Eigen::Map<const Vec>(noise.data(), static_cast<Eigen::Index>(n));
             const Vec e = sig + nv;
-            const int p = sel.pick(e, cs, static_cast<int>(job.cand), &nv);
+            const int p = jobSel.pick(e, cs, static_cast<int>(job.cand), &nv);
             ++row.replicas;
             if (p == static_cast<int>(job.cand)) ++row.detected;
             else if (p < 0) ++row.missed;
