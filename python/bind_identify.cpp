@@ -102,6 +102,21 @@ Setters<IdentifyRequest> identifySetters() {
         o("identifiability_alpha", &IdentifyOptions::identifiabilityAlpha), o("decimate", &IdentifyOptions::decimate),
         o("substeps", &IdentifyOptions::substeps), o("multistarts", &IdentifyOptions::multistarts),
         o("max_segments", &IdentifyOptions::maxSegmentsPerRun), o("seed", &IdentifyOptions::seed),
+        o("confounded_vif", &IdentifyOptions::confoundedVif),
+        fn<R>("self_test", [](R& r, py::handle v) { r.selfTest = v.cast<bool>(); }),
+        fn<R>("self_test_replicas", [](R& r, py::handle v) { r.selfTestReplicas = v.cast<int>(); }),
+        fn<R>("self_test_levels", [](R& r, py::handle v) {
+            r.selfTestLevels.clear();
+            if (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v)) r.selfTestLevels.push_back(v.cast<double>());
+            else
+                for (auto x : v) r.selfTestLevels.push_back(x.cast<double>());
+        }),
+        fn<R>("self_test_size", [](R& r, py::handle v) {  // {"backlash": 1e-4} or ["backlash=1e-4"]
+            r.selfTestSizes.clear();
+            if (py::isinstance<py::dict>(v))
+                for (auto kv : v.cast<py::dict>()) r.selfTestSizes.push_back(text(kv.first) + "=" + valueText(kv.second, text(kv.first)));
+            else r.selfTestSizes = stringList(v, "self_test_size");
+        }),
         fn<R>("epsT", [](R& r, py::handle v) { r.options.start.epsT_N_per_m = v.cast<double>(); }),
         fn<R>("Dc", [](R& r, py::handle v) { r.options.start.Dc_m = v.cast<double>(); }),
     };

@@ -217,6 +217,26 @@ bool runIdentifyRequest(const IdentifyRequest& o, IdentifyResult& res, nlohmann:
     else
         return fail(status, PipelineCode::BadArguments,
                     "--dynamics-residual: '" + o.dynamicsResidual + "' is not one of auto, equation-error, segments");
+    if (o.selfTest) {
+        if (o.selfTestReplicas < 1 || o.selfTestReplicas > 10000)
+            return fail(status, PipelineCode::BadArguments,
+                        "--self-test-replicas = " + std::to_string(o.selfTestReplicas) + " is outside the allowed range [1, 10000]");
+        opt.selfTest.replicas = o.selfTestReplicas;
+        opt.selfTest.levels = o.selfTestLevels;
+        opt.selfTest.sizes.clear();
+        for (const std::string& sz : o.selfTestSizes) {
+            const size_t eq = sz.find('=');
+            double v = 0;
+            const std::string txt = eq == std::string::npos ? std::string() : sz.substr(eq + 1);
+            char* end = nullptr;
+            if (!txt.empty()) v = std::strtod(txt.c_str(), &end);
+            if (eq == std::string::npos || eq == 0 || txt.empty() || end == txt.c_str() || *end != '\0')
+                return fail(status, PipelineCode::BadArguments,
+                            "--self-test-size '" + sz + "': expected EFFECT=VALUE, e.g. backlash=1e-4 (the effect's size parameter in SI units)");
+            opt.selfTest.sizes[sz.substr(0, eq)] = v;
+        }
+        if (const std::string why = opt.selfTest.validate(); !why.empty()) return fail(status, PipelineCode::BadArguments, why);
+    }
     io::Dataset fitData, valData;
     SetupKind setup = SetupKind::Prescribed;
     if (!loadMeasuredInputs(o.in, fitData, valData, setup, status)) return false;
@@ -245,6 +265,8 @@ bool runIdentifyRequest(const IdentifyRequest& o, IdentifyResult& res, nlohmann:
     }
     res = identifyEffects(std::move(runs), opt);
     if (!res.ok) return fail(status, res.cancelled ? PipelineCode::Cancelled : PipelineCode::RunFailed, res.message);
+    if (res.selfTest.ran && !res.selfTest.ok)
+        return fail(status, res.cancelled ? PipelineCode::Cancelled : PipelineCode::RunFailed, "self-test: " + res.selfTest.message);
     report = toJson(res);
     report["preprocessing"] = toJson(pre);
     report["inputs"] = {{"data", o.in.data}, {"validate_on", o.in.validateOn}, {"manifest", o.in.manifest}};

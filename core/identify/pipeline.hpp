@@ -85,7 +85,12 @@ struct IdentifyRequest {
     std::string free = "mu,C1,eta,Dc,vc,epsT";
     std::string dynamicsResidual = "equation-error";  // auto, equation-error or segments
     std::vector<std::string> candidates;              // empty = the whole catalogue
-    IdentifyOptions options;                          // freeLaw, candidates, dynamicsResidual are set from the above
+    // Recovery self-test (self_test.hpp): on when selfTest; sizes as EFFECT=VALUE (SI units).
+    bool selfTest = false;
+    int selfTestReplicas = 20;
+    std::vector<double> selfTestLevels = {0.5};
+    std::vector<std::string> selfTestSizes;
+    IdentifyOptions options;                          // freeLaw, candidates, dynamicsResidual, selfTest are set from the above
 };
 
 // `report` is what `stickslip-cli identify --report` writes.

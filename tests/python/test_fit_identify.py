@@ -38,3 +38,19 @@ def test_fit_identify_bad_arguments(damper):
         stickslip.identify(run, candidates="no_such_effect")
     with pytest.raises(OSError):
         stickslip.fit("/no/such/run.csv")
+
+
+def test_identify_self_test_equals_cli_report(cli, damper, tmp_path):
+    data = [str(damper / n) for n in ("1Hz_30lb_1in.csv", "1Hz_36lb_1in.csv")]
+    got = stickslip.identify(data, setup="prescribed", candidates=["normal_load_mu", "backlash"], max_effects=0,
+                             multistarts=1, self_test=True, self_test_replicas=4, self_test_levels=[0.5, 1.0],
+                             self_test_size={"backlash": 1e-3})
+    run_cli(cli, "identify", "--data", *data, "--setup", "prescribed", "--candidates", "normal_load_mu,backlash",
+            "--max-effects", "0", "--multistarts", "1", "--self-test", "--self-test-replicas", "4",
+            "--self-test-levels", "0.5,1", "--self-test-size", "backlash=1e-3", "--quiet", "--report", tmp_path / "st.json")
+    want = load_json(tmp_path / "st.json")
+    assert strip_keys(got) == strip_keys(want)
+    rows = got["self_test"]["rows"]
+    assert rows[-1]["effect"] == "backlash" and rows[-1]["size"] == 1e-3 and rows[-1]["replicas"] == 4
+    with pytest.raises(ValueError, match="self-test-size 'backlash'"):
+        stickslip.identify(data, setup="prescribed", self_test=True, self_test_size=["backlash"])
