@@ -166,39 +166,55 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
             }
             sc.residual = residualName(s2);
             const auto st = scannedStart(cx, s2, c, base->values, fitIdx);
-            const FitOutcome f = fitSpec(cx, s2, st, fitIdx, 1, res.fits);
+            FitOutcome f = fitSpec(cx, s2, st, fitIdx, 1, res.fits);
             if (!f.ok) {
                 sc.reason = "fit failed: " + f.message;
                 scores[c] = sc;
                 continue;
+            }
+            // The candidate contains the current model (its effect where it vanishes): a fit that
+            // ends above the current model's sum of squares stopped in a worse local minimum — a
+            // solver failure, retried from the current model's own point.
+            std::string startNote;
+            if (f.ss > base->ss * (1.0 + 1e-6)) {
+                const FitOutcome g = fitSpec(cx, s2, retryStart(cx, c, base->values, st, ""), fitIdx, 1, res.fits);
+                if (g.ok && g.ss < f.ss) {
+                    f = g;
+                    startNote = "the scanned start ended above the current model it contains (a solver failure); refitted "
+                                "from the current model's point. ";
+                }
+            }
+            // An effect whose size parameter (the first in its catalogue entry) ends on a physical
+            // bound has not been identified (the fit wants it outside the physical range, or the
+            // effect has vanished): the improvement it brings is not evidence for this effect.
+            // Before giving up, one more start halfway between where the effect vanishes and that
+            // bound: if it leaves the bound with a lower cost, the first start was a solver failure;
+            // if it ends there too, the bound is the data's answer. (Time constants and distances
+            // of the other parameters may rightly sit on a bound: "faster than the data resolve".)
+            std::string side = sizeBound(cx, c, f.values);
+            if (!side.empty()) {
+                const FitOutcome g = fitSpec(cx, s2, retryStart(cx, c, f.values, st, side), fitIdx, 1, res.fits);
+                if (g.ok && sizeBound(cx, c, g.values).empty() && g.ss < f.ss) {
+                    f = g;
+                    startNote += "the first start ended on the " + side + " bound of the size, a start halfway to it did not "
+                                 "(a solver failure): refitted. ";
+                    side.clear();
+                }
             }
             sc.deltaBic = bicOf(f, s2, s2.segments == spec.segments ? curDiag.integratedAcfTime : 1.0) - bicBase;
             sc.fitNrmse = f.count > 0 ? std::sqrt(f.ss / f.count) : 0.0;
             for (const ParamEstimate& p : f.estimates)
                 if (p.name.rfind(c + ".", 0) == 0) sc.params.push_back({p.name.substr(c.size() + 1), p.value, p.stderr_});
             sc.sizeCorrelation = sizeCorrelations(f.fit, c);
-            // An effect whose size parameter (the first in its catalogue entry) ends on a physical
-            // bound has not been identified (the fit wants it outside the physical range, or the
-            // effect has vanished): the improvement it brings is not evidence for this effect.
-            // (Time constants and distances of the other parameters may rightly sit on a bound:
-            // "faster than the data resolve".)
-            {
+            sc.startNote = startNote;
+            if (!side.empty()) {
                 EffectInfo info;
                 findEffect(c, info);
-                std::string atBound;
-                for (const EffectParam& q0 : std::vector<EffectParam>(info.params.begin(), info.params.begin() + 1)) {
-                    const EffectParam q = scaledParam(q0, cx.muScale);
-                    const double v = f.values.count(c + "." + q.name) ? f.values.at(c + "." + q.name) : q.initial;
-                    const bool lo = q.logScale ? v <= q.lower * 1.01 : v <= q.lower + 1e-3 * (q.upper - q.lower);
-                    const bool hi = q.logScale ? v >= q.upper / 1.01 : v >= q.upper - 1e-3 * (q.upper - q.lower);
-                    if ((lo && q.lower != 0.0) || hi) atBound = q.name;
-                }
-                if (!atBound.empty()) {
-                    sc.reason = "parameter " + atBound + " ended on its physical bound: not identified (dBIC " +
-                                std::to_string(sc.deltaBic) + " not credited)";
-                    scores[c] = sc;
-                    continue;
-                }
+                sc.reason = startNote + "parameter " + info.params.front().name + " ended on its physical " + side +
+                            " bound from two starts (scanned, and halfway to the bound): the data's answer, not a solver "
+                            "failure; not identified (dBIC " + std::to_string(sc.deltaBic) + " not credited)";
+                scores[c] = sc;
+                continue;
             }
             tried.push_back({sc, f, s2});
         }

@@ -185,6 +185,7 @@ struct CandidateScore {
     // parameter) and each baseline parameter. Near ±1 the two trade off.
     std::map<std::string, double> sizeCorrelation;
     std::string confoundedWith;  // the added effect it trades off with (selection test 0), if any
+    std::string startNote;       // a first start that failed (ended above the current model, or on a bound) and was retried
     static constexpr double kNoTest = -1.0;
     std::string residual = "equation_error";  // dynamics: "equation_error" or "segments"; prescribed: "prescribed"
 };

@@ -328,6 +328,41 @@ std::map<std::string, double> baselineStart(const Context& cx, const std::vector
     return st;
 }
 
+std::string sizeBound(const Context& cx, const std::string& e, const std::map<std::string, double>& vals) {
+    EffectInfo info;
+    if (!findEffect(e, info) || info.params.empty()) return {};
+    const EffectParam q = scaledParam(info.params.front(), cx.muScale);
+    const auto it = vals.find(e + "." + q.name);
+    const double v = it != vals.end() ? it->second : q.initial;
+    const bool lo = q.logScale ? v <= q.lower * 1.01 : v <= q.lower + 1e-3 * (q.upper - q.lower);
+    const bool hi = q.logScale ? v >= q.upper / 1.01 : v >= q.upper - 1e-3 * (q.upper - q.lower);
+    if (hi) return "upper";
+    if (lo && q.lower != 0.0) return "lower";
+    return {};
+}
+
+std::map<std::string, double> retryStart(const Context& cx, const std::string& e, std::map<std::string, double> vals,
+                                         const std::map<std::string, double>& scanned, const std::string& boundSide) {
+    EffectInfo info;
+    findEffect(e, info);
+    for (const EffectParam& q0 : info.params) {
+        const std::string key = e + "." + q0.name;
+        if (scanned.count(key)) vals[key] = scanned.at(key);
+    }
+    if (info.params.empty()) return vals;
+    const EffectParam q = scaledParam(info.params.front(), cx.muScale);
+    const std::string key = e + "." + q.name;
+    // Where the effect vanishes, inside the physical range (a stiffness: its upper bound).
+    const double none = std::isinf(q.vanishing) ? q.upper : std::clamp(effectVanishes(cx, e, q), q.lower, q.upper);
+    if (boundSide.empty()) {
+        vals[key] = none;
+        return vals;
+    }
+    const double b = boundSide == "upper" ? q.upper : q.lower;
+    vals[key] = q.logScale ? std::sqrt(std::max(none, q.lower) * b) : 0.5 * (none + b);
+    return vals;
+}
+
 // Start values of an effect's parameters on top of `cur`: each log-scale parameter in turn
 // is scanned over 9 log-spaced values across its bounds (and its default start), the others
 // held, and the fit starts at the lowest cost. A gradient fit from one default start

@@ -149,6 +149,15 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
                      std::vector<std::map<std::string, double>>* loo = nullptr);
 Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds);
 std::map<std::string, double> baselineStart(const Context& cx, const std::vector<size_t>& fitIdx);
+// "lower" or "upper" when effect e's size parameter (params[0]) in `vals` sits on that physical
+// bound (a lower bound of 0, where the effect vanishes, does not count), else empty.
+std::string sizeBound(const Context& cx, const std::string& e, const std::map<std::string, double>& vals);
+// Another start for a candidate fit of effect e: `vals` (the current model's values) with the
+// effect's parameters from `scanned`, and its size where the effect vanishes (boundSide empty:
+// the current model's own point) or halfway from there to the bound it ended on (log-halfway
+// for a log-scaled size).
+std::map<std::string, double> retryStart(const Context& cx, const std::string& e, std::map<std::string, double> vals,
+                                         const std::map<std::string, double>& scanned, const std::string& boundSide);
 std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, const std::string& effect,
                                            std::map<std::string, double> vals, const std::vector<size_t>& idx);
 

@@ -116,6 +116,7 @@ nlohmann::json toJson(const IdentifyResult& r) {
                               for (const auto& [n, v] : c.sizeCorrelation) o[n] = num(v);
                               return o;
                           }()},
+                         {"start_note", c.startNote.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.startNote)},
                          {"confounded_with", c.confoundedWith.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.confoundedWith)},
                          {"rejected_because", c.accepted ? nlohmann::json(nullptr) : nlohmann::json(c.reason)}});
     j["candidates"] = cands;
