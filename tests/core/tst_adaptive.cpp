@@ -113,7 +113,8 @@ private slots:
 
     // Error against tolerance over 20 cycles (the measure, A = 1 mm, ε_T = 1e6 and the
     // paper's second set A = 0.4 mm, ε_T = 1.1e4): monotone in the tolerance and within 2× of
-    // it (error ≤ 2 TOL, and ≥ TOL/10 so the tolerance is not met by brute force).
+    // it from above (error ≤ 2 TOL); from below only ≥ TOL/20 (seen down to 0.08 TOL: Coulomb
+    // 0.4 mm at TOL 1e-2, where a few steps already resolve the motion).
     // Rate-state at A = 1 mm, ε_T = 1e6 is the tight row (seen 1.4× at TOL = 1e-4, 2.6× at 3e-5,
     // 5.3× at 1e-5: the estimate in x under-reads the law's error in smooth slip, see the order
     // test), so TOL below 1e-4 is not asserted for it.
@@ -147,7 +148,7 @@ private slots:
             qInfo("tol %.0e: %ld steps (%ld base steps), error %.3e = %.2f tol", tol, r.stats.steps,
                   r.stats.newtonIterations, e, e / tol);
             QVERIFY2(e <= 2 * tol, qPrintable(QString("error %1 at tolerance %2").arg(e).arg(tol)));
-            QVERIFY2(e >= 0.1 * tol, qPrintable(QString("error %1 at tolerance %2").arg(e).arg(tol)));
+            QVERIFY2(e >= 0.05 * tol, qPrintable(QString("error %1 at tolerance %2").arg(e).arg(tol)));
             QVERIFY(e < prev);
             prev = e;
         }
@@ -268,9 +269,9 @@ private slots:
     // Energy over cycles 5–15 (the sets of tst_energy), with the trapezoidal rule on the accepted
     // steps (switches are step ends, so F is smooth inside every step):
     //   mechanical: ∫F ẋ dt = Δ(½ m ẋ² + ½ k x²) + ∫c ẋ² dt   (Eq. 8 times ẋ), to 1e-4 of the stage
-    //               work ∫F u̇ dt (the quadrature and the run's errors are O(h²); seen ≤ 3.6e-6);
+    //               work ∫F u̇ dt (the quadrature and the run's errors are O(h²); seen ≤ 3.4e-5);
     //   contact:    ∫F ġ dt − Δ(F²/2ε_T) is the slip dissipation (Eq. 4 times F): > 0 overall, and
-    //               over the stuck steps (no slip) below 1e-4 of it (seen ≤ 6e-6).
+    //               over the stuck steps (no slip) below 1e-4 of it (seen ≤ 5.6e-5).
     // Unlike the fixed-step identity of tst_energy this is not exact for the extrapolated steps,
     // so it checks the accuracy of the adaptive run, not just the algebra.
     void energyBalance_data() {
