@@ -36,7 +36,7 @@ struct AdaptiveOptions {
     // 1e-5 … 0.5 (validate()).
     double tolerance = 1e-4;
     double maxStep_s = 0;       // largest step [s]; 0: T/32 of the forcing period (or 1e-2 s)
-    double minStep_s = 0;       // smallest regular step [s]; 0: 2^-20 of the largest step
+    double minStep_s = 0;       // smallest regular step [s]; 0: 2^-26 of the largest step
     double displacementScale_m = 0;  // floor of the error scale [m]; 0: 5 % of the stage amplitude
     long maxSteps = 50'000'000;      // accepted + rejected steps of one call: more fails the run
     bool locateSwitches = true;      // cut steps at stick–slip switches (off: error control only)
