@@ -79,16 +79,16 @@ private slots:
     // Order under refinement of the extrapolated step itself: the step size held at h_max
     // (tolerance 0.5 never rejects) for h_max = T/1000 … T/8000 over 5 cycles. Coulomb: the
     // law is exact in closed form, Newmark + extrapolation is second order and the switches are
-    // located, so the slope is ≥ 1.8 (seen 2.0). Rate-state: backward Euler's first-order term
-    // is removed by the extrapolation, but the measured slope on this set is ~1 (seen 0.8–1.3
-    // pairwise; the error is 3–10× below the fixed-step scheme's at the same h). The issue's
-    // ≥ 2 is NOT reached for this law yet; we assert what holds (≥ 0.7) and that the error
-    // falls monotonically, and report the numbers.
+    // located, so the slope is ≥ 1.8 (seen 2.05). Rate-state: the extrapolation (with the
+    // viscous velocity weight, adaptive.cpp) leaves an order reduction where h approaches the
+    // overstress relaxation time η t_N/ε_T ≈ 4 µs; the measured slope is 1.31 (0.90 with plain
+    // 2y₂ − y₁). The issue's ≥ 2 is NOT reached for this law yet; we assert what holds (≥ 1.1)
+    // and that the error falls monotonically, and report the numbers.
     void observedOrder_data() {
         QTest::addColumn<bool>("coulomb");
         QTest::addColumn<double>("minOrder");
         QTest::addRow("coulomb") << true << 1.8;
-        QTest::addRow("rate-state") << false << 0.7;
+        QTest::addRow("rate-state") << false << 1.1;
     }
     void observedOrder() {
         QFETCH(bool, coulomb);
@@ -115,18 +115,18 @@ private slots:
     // paper's second set A = 0.4 mm, ε_T = 1.1e4): monotone in the tolerance and within 2× of
     // it from above (error ≤ 2 TOL); from below only ≥ TOL/20 (seen down to 0.08 TOL: Coulomb
     // 0.4 mm at TOL 1e-2, where a few steps already resolve the motion).
-    // Rate-state at A = 1 mm, ε_T = 1e6 is the tight row (seen 1.4× at TOL = 1e-4, 2.6× at 3e-5,
-    // 5.3× at 1e-5: the estimate in x under-reads the law's error in smooth slip, see the order
-    // test), so TOL below 1e-4 is not asserted for it.
+    // Seen (TOL 1e-2 … 1e-5): Coulomb 1 mm 1.01 1.28 0.74 0.74; Coulomb 0.4 mm 0.12 0.25 0.34
+    // 0.41; rate-state 1 mm 1.33 1.01 1.52 1.93 (0.18 … 5.5 before the viscous velocity weight);
+    // rate-state 0.4 mm 0.89 1.16 1.03 1.18.
     void errorFollowsTolerance_data() {
         QTest::addColumn<bool>("coulomb");
         QTest::addColumn<double>("amplitude");
         QTest::addColumn<double>("epsT");
         QTest::addColumn<double>("smallestTol");
-        QTest::addRow("coulomb A=1mm eps=1e6") << true << 1e-3 << 1e6 << 1e-4;
-        QTest::addRow("rate-state A=1mm eps=1e6") << false << 1e-3 << 1e6 << 1e-4;
-        QTest::addRow("coulomb A=0.4mm eps=1.1e4") << true << 0.4e-3 << 1.1e4 << 1e-4;
-        QTest::addRow("rate-state A=0.4mm eps=1.1e4") << false << 0.4e-3 << 1.1e4 << 1e-4;
+        QTest::addRow("coulomb A=1mm eps=1e6") << true << 1e-3 << 1e6 << 1e-5;
+        QTest::addRow("rate-state A=1mm eps=1e6") << false << 1e-3 << 1e6 << 1e-5;
+        QTest::addRow("coulomb A=0.4mm eps=1.1e4") << true << 0.4e-3 << 1.1e4 << 1e-5;
+        QTest::addRow("rate-state A=0.4mm eps=1.1e4") << false << 0.4e-3 << 1.1e4 << 1e-5;
     }
     void errorFollowsTolerance() {
         QFETCH(bool, coulomb);
@@ -138,7 +138,7 @@ private slots:
         p.rateState.epsT_N_per_m = p.coulomb.epsT_N_per_m = epsT;
         const std::vector<double> ref = referenceTrace(p);
         double prev = INFINITY;
-        for (double tol : {1e-2, 1e-3, 1e-4}) {
+        for (double tol : {1e-2, 1e-3, 1e-4, 1e-5}) {
             if (tol < smallestTol) break;
             AdaptiveOptions o;
             o.tolerance = tol;
