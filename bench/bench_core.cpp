@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/integrate/adaptive.hpp"
 #include "core/integrate/dynamics.hpp"
 #include "core/presets.hpp"
 
@@ -83,6 +84,44 @@ void runAt(benchmark::State& state, SimParams p, long n, double err) {
     state.counters["cycles_per_s"] = benchmark::Counter(static_cast<double>(steps) * perStep, benchmark::Counter::kIsRate);
 }
 
+// Adaptive integrator (issue 15): error of a run at tolerance tol against the fixed-step
+// scheme at 400 000 steps per cycle (the issue's reference), on the same T/100 grid.
+double adaptiveError(const SimParams& p, const std::vector<double>& ref, double tol, long& steps, long& baseSteps) {
+    SimParams q = p;
+    q.integration.outputInterval_s = p.drive.period() / 100.0;
+    AdaptiveOptions o;
+    o.tolerance = tol;
+    const RunResult r = simulateAdaptive(q, o);
+    steps = r.stats.steps;
+    baseSteps = r.stats.newtonIterations;
+    if (!r.ok() || r.samples.size() != ref.size() + 1) return NAN;
+    double err = 0, amp = 0;
+    for (size_t i = 0; i < ref.size(); ++i) {  // samples[0] is t = 0, ref[0] is t = T/100
+        err = std::max(err, std::abs(r.samples[i + 1].slider_m - ref[i]));
+        amp = std::max(amp, std::abs(ref[i]));
+    }
+    return err / amp;
+}
+
+void runAdaptive(benchmark::State& state, SimParams p, double tol, double err, long steps, long baseSteps) {
+    const DynamicsModel m = DynamicsModel::fromParams(p);
+    AdaptiveOptions o;
+    o.tolerance = tol;
+    const double tEnd = p.cycles * p.drive.period();
+    double cycles = 0;
+    for (auto _ : state) {
+        DynState s = m.initialState();
+        const AdaptiveReport r = advanceAdaptive(m, s, tEnd, o);
+        benchmark::DoNotOptimize(s.x);
+        if (r.status != RunStatus::Ok) state.SkipWithError(r.message.c_str());
+        cycles += p.cycles;
+    }
+    state.counters["steps_per_cycle"] = static_cast<double>(steps) / p.cycles;
+    state.counters["base_steps_per_cycle"] = static_cast<double>(baseSteps) / p.cycles;
+    state.counters["rel_error"] = err;
+    state.counters["cycles_per_s"] = benchmark::Counter(cycles, benchmark::Counter::kIsRate);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -99,6 +138,20 @@ int main(int argc, char** argv) {
         benchmark::RegisterBenchmark(name, [p, n, err](benchmark::State& st) { runAt(st, p, n, err); })
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime();
+    }
+    std::printf("Adaptive (core/integrate/adaptive.hpp, --tolerance): error against the fixed-step run at 400 000 "
+                "steps/cycle\n");
+    const std::vector<double> ref = trajectory(p, 400000);
+    for (double tol : {1e-3, 1e-4, 1e-5}) {
+        long steps = 0, baseSteps = 0;
+        const double err = adaptiveError(p, ref, tol, steps, baseSteps);
+        std::printf("  adaptive tol %.0e: %ld accepted steps (%ld base steps) over %g cycles -> error %.3e\n", tol, steps,
+                    baseSteps, p.cycles, err);
+        char name[64];
+        std::snprintf(name, sizeof name, "fig20_A1mm/adaptive_tol_%.0e", tol);
+        benchmark::RegisterBenchmark(name, [p, tol, err, steps, baseSteps](benchmark::State& st) {
+            runAdaptive(st, p, tol, err, steps, baseSteps);
+        })->Unit(benchmark::kMillisecond)->UseRealTime();
     }
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();

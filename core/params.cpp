@@ -89,6 +89,9 @@ ParamIssues IntegrationParams::validate() const {
     requirePositive(out, "dt", dt_s);
     requirePositive(out, "output_every", outputInterval_s);
     if (maxSteps < 1) out.push_back({"max_steps", static_cast<double>(maxSteps), ">= 1"});
+    // The adaptive integrator's own range (AdaptiveOptions::validate).
+    if (!(tolerance == 0.0 || (tolerance >= 1e-5 && tolerance <= 0.5)))
+        out.push_back({"tolerance", tolerance, "0 (fixed step) or in [1e-5, 0.5]"});
     return out;
 }
 long IntegrationParams::outputEvery() const {
@@ -111,6 +114,8 @@ ParamIssues SimParams::validate() const {
     // The step must resolve the forcing: at least 8 steps per period.
     if (integration.dt_s > 0.0 && drive.frequency_Hz > 0.0 && integration.dt_s > drive.period() / 8.0)
         out.push_back({"dt", integration.dt_s, "<= T/8 = " + std::to_string(drive.period() / 8.0) + " s"});
+    if (setup == SetupKind::Prescribed && integration.tolerance != 0.0)
+        out.push_back({"tolerance", integration.tolerance, "0 in the prescribed set-up (adaptive: dynamics only)"});
     return out;
 }
 

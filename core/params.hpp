@@ -69,6 +69,10 @@ struct IntegrationParams {
     // before its first step with "step budget exceeded: …", so no parameter set (a tiny dt,
     // a huge cycle count) can stall a worker. The default is 10 000× a default 20-cycle run.
     long maxSteps = 2'000'000'000;
+    // Relative displacement error target of the adaptive integrator (core/integrate/adaptive.hpp,
+    // issue 15), 1e-5 … 0.5; 0 (the default) = the paper's fixed-step scheme with dt_s. Only the
+    // dynamics set-up integrates adaptively. Not a parameter key (not in sessions or run files).
+    double tolerance = 0.0;
     ParamIssues validate() const;
     // Number of steps between output samples (≥ 1).
     long outputEvery() const;

@@ -79,6 +79,16 @@ bool simParamsFromOptions(const SimOptions& o, SimParams& out, std::string* erro
         }
         p.integration.maxSteps = static_cast<long>(n);
     }
+    if (!o.tolerance.empty()) {
+        // Not a parameter key either: selects the adaptive integrator (IntegrationParams::tolerance).
+        char* end = nullptr;
+        const double tol = std::strtod(o.tolerance.c_str(), &end);
+        if (end == o.tolerance.c_str() || *end != '\0' || !std::isfinite(tol)) {
+            if (error) *error = "--tolerance '" + o.tolerance + "': expected a number (relative displacement error, 1e-5 to 0.5; 0 = fixed step)";
+            return false;
+        }
+        p.integration.tolerance = tol;
+    }
     const ParamIssues issues = p.validate();
     if (!issues.empty()) {
         if (error) *error = "invalid parameters:\n" + formatIssues(issues);

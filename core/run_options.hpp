@@ -22,6 +22,7 @@ struct SimOptions {
     std::string transient;             // discarded cycles
     std::string outputEvery;           // output sample spacing [s]
     std::string maxSteps;              // step budget of one run ("" = IntegrationParams' default)
+    std::string tolerance;             // adaptive error target ("" or "0" = fixed step dt)
 };
 
 // Preset names joined by ", " (for help texts and messages).

@@ -45,6 +45,9 @@ void runSimulate(const SimulateOptions& o, int& exitCode) {
         comments.push_back("input = " + o.input);
     }
 
+    if (p.integration.tolerance > 0.0)
+        comments.push_back("integration = adaptive, tolerance = " + exactNumber(p.integration.tolerance) +
+                           " (dt unused; samples every output interval exactly)");
     RunControl ctl;
     ctl.cancel = &cancelFlag();
     // A file is written while the run computes (its rows never all in memory); standard
@@ -92,6 +95,11 @@ void addSimulateCommand(CLI::App& root, int& exitCode) {
         "simulate", "Run one simulation (spring-mass dynamics or prescribed slip) and write its samples as CSV");
     auto o = std::make_shared<SimulateOptions>();
     addSimOptions(cmd, o->sim);
+    cmd->add_option("--tolerance", o->sim.tolerance,
+                    "Integrate adaptively to this relative displacement error (1e-5 to 0.5; dynamics set-up): "
+                    "error-controlled steps, stick-slip switches located, output exactly every --output-every. "
+                    "Default: the fixed step --dt")
+        ->type_name("TOL");
     cmd->add_option("--input", o->input,
                     "Prescribed slip history CSV: time_s and one of rel_disp_m, stage_disp_m (slider held fixed) "
                     "or rel_vel_mps; optional normal_force_N; '#' lines skipped")

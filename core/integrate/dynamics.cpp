@@ -1,6 +1,8 @@
 #include "dynamics.hpp"
 
 #include <algorithm>
+
+#include "adaptive.hpp"
 #include <cmath>
 
 namespace stickslip {
@@ -138,6 +140,13 @@ RunResult simulateDynamics(const SimParams& p, const RunControl& ctl) {
         r.status = RunStatus::Failed;
         r.message = formatIssues(issues);
         return r;
+    }
+    if (p.integration.tolerance > 0.0) {
+        // Error-controlled steps (issue 15); the output grid is outputInterval_s exactly.
+        AdaptiveOptions o;
+        o.tolerance = p.integration.tolerance;
+        o.maxSteps = p.integration.maxSteps;
+        return simulateAdaptive(p, o, ctl);
     }
     if (std::string why = stepBudgetProblem(harmonicRunSteps(p), p.integration.maxSteps); !why.empty()) {
         RunResult r;

@@ -271,7 +271,7 @@ struct PeriodRecording {
 long stepsPerPeriodDividing(const SimParams& p);
 
 // A full run as SimParams say: transient cycles discarded, then `cycles` recorded at the
-// output interval; when the step divides the forcing period, also the states at every whole
+// output interval (with integration.tolerance > 0: by simulateAdaptive, adaptive.hpp); when the step divides the forcing period, also the states at every whole
 // period (RunResult::period). Validates the parameters first (Failed with the list of issues).
 RunResult simulateDynamics(const SimParams& p, const RunControl& ctl = {});
 // The same from a prepared model and state (continuation, fits): runs `steps` steps,

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "core/integrate/adaptive.hpp"
 #include "core/integrate/simulate.hpp"
 #include "core/io/csv_table.hpp"
 #include "core/io/run_csv.hpp"
@@ -98,6 +99,41 @@ private slots:
         }
         QVERIFY(sawA);
         QVERIFY(sawVersion);
+    }
+
+    // --tolerance selects the adaptive integrator (core/integrate/adaptive.hpp): the CSV equals
+    // the in-process simulateAdaptive run, on the exact --output-every grid, and says so in a
+    // header line; an out-of-range tolerance or one in the prescribed set-up is exit 2.
+    void toleranceSelectsAdaptive() {
+        QTemporaryDir dir;
+        const QString out = dir.filePath("adaptive.csv");
+        const Result r = runCli({"simulate", "--preset", "fig20", "--cycles", "2", "--tolerance", "1e-4",
+                                 "--output-every", "0.001", "--out", out});
+        QVERIFY2(r.exitCode == 0, r.err.constData());
+        io::CsvTable t;
+        io::CsvError e;
+        QVERIFY2(io::readCsvTable(out.toStdString(), t, e), e.what().c_str());
+        Preset pr;
+        QVERIFY(findPreset("fig20", pr));
+        SimParams p = pr.params;
+        p.cycles = 2;
+        p.integration.outputInterval_s = 0.001;
+        AdaptiveOptions o;
+        o.tolerance = 1e-4;
+        const RunResult ref = simulateAdaptive(p, o);
+        QVERIFY2(ref.ok(), ref.message.c_str());
+        QCOMPARE(t.rows(), ref.samples.size());
+        const int it = t.column("time_s"), ix = t.column("slider_disp_m");
+        for (size_t i = 0; i < ref.samples.size(); ++i) {
+            QVERIFY(std::abs(t.columns[it][i] - 0.001 * static_cast<double>(i)) <= 1e-12);
+            QVERIFY(std::abs(t.columns[ix][i] - ref.samples[i].slider_m) <= 1e-12);
+        }
+        bool saw = false;
+        for (const std::string& c : t.comments) saw |= c.rfind("integration = adaptive, tolerance = 0.0001", 0) == 0;
+        QVERIFY(saw);
+        QCOMPARE(runCli({"simulate", "--tolerance", "1e-7", "--out", dir.filePath("x.csv")}).exitCode, 2);
+        QCOMPARE(runCli({"simulate", "--tolerance", "abc", "--out", dir.filePath("x.csv")}).exitCode, 2);
+        QCOMPARE(runCli({"simulate", "--setup", "prescribed", "--tolerance", "1e-3", "--out", dir.filePath("x.csv")}).exitCode, 2);
     }
 
     void outDashWritesStdout() {
