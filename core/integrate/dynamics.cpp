@@ -1,9 +1,9 @@
 #include "dynamics.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "adaptive.hpp"
-#include <cmath>
 
 namespace stickslip {
 
