@@ -245,8 +245,8 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
                 sc.confoundedWith = with;
                 sc.reason = "confounded with " + with + ": their sizes trade off in the joint fit (correlation " +
                             std::to_string(r) + ", variance inflation " + std::to_string(1.0 / std::max(1.0 - r * r, 1e-300)) +
-                            " > " + std::to_string(opt.confoundedVif) + "); dBIC " + std::to_string(sc.deltaBic) +
-                            " not credited to either";
+                            " > " + std::to_string(opt.confoundedVif) + "): the data cannot tell the two apart; dBIC " +
+                            std::to_string(sc.deltaBic) + " not credited";
                 continue;
             }
             // (1b) The gain against what noise alone gives on these runs (noise_null.hpp).
