@@ -371,14 +371,21 @@ std::map<std::string, double> retryStart(const Context& cx, const std::string& e
 // and their current values): the baseline has already used them to mimic what the effect does
 // — on D03 a state distance of 133 µm stood in for a 7 ms lag, and the lag scanned at that D_c
 // ended on its lower bound — so the effect alone, from the baseline's point, finds nothing.
-std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, const std::string& effect,
-                                           std::map<std::string, double> vals, const std::vector<size_t>& idx) {
+std::map<std::string, double> effectStart(const Context& cx, const std::string& effect, std::map<std::string, double> vals) {
     EffectInfo info;
     findEffect(effect, info);
     for (const EffectParam& q : info.params) {
         const auto from = q.continues ? vals.find(q.continues) : vals.end();
         vals[effect + "." + q.name] = from != vals.end() ? from->second : scaledParam(q, cx.muScale).initial;
     }
+    return vals;
+}
+
+std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, const std::string& effect,
+                                           std::map<std::string, double> vals, const std::vector<size_t>& idx) {
+    EffectInfo info;
+    findEffect(effect, info);
+    vals = effectStart(cx, effect, std::move(vals));
     const std::vector<FitParameter> ps = parameters(cx, s2, vals);
     for (const EffectParam& q0 : info.params) {
         const EffectParam q = scaledParam(q0, cx.muScale);

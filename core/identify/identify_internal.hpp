@@ -158,6 +158,9 @@ std::string sizeBound(const Context& cx, const std::string& e, const std::map<st
 // for a log-scaled size).
 std::map<std::string, double> retryStart(const Context& cx, const std::string& e, std::map<std::string, double> vals,
                                          const std::map<std::string, double>& scanned, const std::string& boundSide);
+// `vals` with effect e's parameters at their start values: the catalogue's initial value (in this
+// data set's units of μ), or the baseline value a parameter continues (viscous_damping's ζ).
+std::map<std::string, double> effectStart(const Context& cx, const std::string& e, std::map<std::string, double> vals);
 std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, const std::string& effect,
                                            std::map<std::string, double> vals, const std::vector<size_t>& idx);
 

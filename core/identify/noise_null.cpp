@@ -71,10 +71,16 @@ ProjectionBases projectionBases(const Eigen::MatrixXd& J0, const Eigen::MatrixXd
 
 NullGains projectionGainNull(const Eigen::MatrixXd& J0, const Eigen::MatrixXd& Jc, const std::vector<NoiseBlock>& blocks,
                              int replicas, uint64_t seed) {
-    NullGains out;
     const ProjectionBases pb = projectionBases(J0, Jc);
+    if (!pb.valid) return {};
+    return projectionGainNull(pb, blocks, static_cast<size_t>(Jc.rows()), replicas, seed);
+}
+
+NullGains projectionGainNull(const ProjectionBases& pb, const std::vector<NoiseBlock>& blocks, size_t rows, int replicas,
+                             uint64_t seed) {
+    NullGains out;
     if (!pb.valid) return out;
-    const Eigen::Index n = Jc.rows(), rc = pb.Qc.cols();
+    const Eigen::Index n = static_cast<Eigen::Index>(rows), rc = pb.Qc.cols();
     out.rankExtra = static_cast<int>(rc);
     if (rc == 0) {
         out.gains.assign(static_cast<size_t>(std::max(replicas, 0)), 0.0);

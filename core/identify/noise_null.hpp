@@ -58,5 +58,8 @@ ProjectionBases projectionBases(const Eigen::MatrixXd& J0, const Eigen::MatrixXd
 // nothing.
 NullGains projectionGainNull(const Eigen::MatrixXd& J0, const Eigen::MatrixXd& Jc, const std::vector<NoiseBlock>& blocks,
                              int replicas, uint64_t seed);
+// The same with the bases already made (rows: the length of the residual vector).
+NullGains projectionGainNull(const ProjectionBases& pb, const std::vector<NoiseBlock>& blocks, size_t rows, int replicas,
+                             uint64_t seed);
 
 }  // namespace stickslip::identify

@@ -43,19 +43,6 @@ struct LinearCandidate {
 
 double squaredNorm(const Eigen::MatrixXd& Q, const Vec& e) { return Q.cols() ? (Q.transpose() * e).squaredNorm() : 0.0; }
 
-// The (1 − α) quantile of the gains ‖Qcᵀ e_b‖² on noise replicas (as projectionGainNull).
-double nullQuantileOf(const ProjectionBases& pb, const std::vector<NoiseBlock>& blocks, size_t n, const IdentifyOptions& opt,
-                      uint64_t seed) {
-    if (opt.nullReplicas <= 0 || pb.Qc.cols() == 0) return 0.0;
-    NullGains ng;
-    for (int b = 0; b < opt.nullReplicas; ++b) {
-        const std::vector<double> e = noiseReplica(blocks, n, seed + static_cast<uint64_t>(b));
-        ng.gains.push_back(squaredNorm(pb.Qc, Eigen::Map<const Vec>(e.data(), static_cast<Eigen::Index>(n))));
-    }
-    std::sort(ng.gains.begin(), ng.gains.end());
-    return ng.quantile(1.0 - opt.nullAlpha);
-}
-
 struct Selector {
     ProjectionBases base;  // Qc: the baseline's columns
     int baseParams = 0;
@@ -85,17 +72,6 @@ struct Selector {
         return best;
     }
 };
-
-// The effect's parameters at their start values on top of the baseline (as scannedStart does).
-std::map<std::string, double> effectStart(const Context& cx, const std::string& effect, std::map<std::string, double> vals) {
-    EffectInfo info;
-    findEffect(effect, info);
-    for (const EffectParam& q : info.params) {
-        const auto from = q.continues ? vals.find(q.continues) : vals.end();
-        vals[effect + "." + q.name] = from != vals.end() ? from->second : scaledParam(q, cx.muScale).initial;
-    }
-    return vals;
-}
 
 // The size parameter's value at position u ∈ [0, 1] from where the effect vanishes (or, for a
 // parameter that continues a baseline one, from the baseline's value) to its physical bound.
@@ -174,7 +150,7 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         const Eigen::MatrixXd J0c = baseColumns(lc.baseCols, held);
         lc.bases = projectionBases(J0c, lc.Jc);
         lc.params = static_cast<int>(J0c.cols() + lc.Jc.cols());
-        lc.nullQuantile = nullQuantileOf(lc.bases, blocks, n, opt, nullSeed);
+        lc.nullQuantile = opt.nullReplicas > 0 ? projectionGainNull(lc.bases, blocks, n, opt.nullReplicas, nullSeed).quantile(1.0 - opt.nullAlpha) : 0.0;
     };
     const Selector sel = makeSelector(-1);
 
