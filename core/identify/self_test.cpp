@@ -203,7 +203,8 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
     }
 
     // The injected signal r(baseline + effect at size) − r(reference) on the compared samples.
-    auto inject = [&](const std::string& c, double size, Injection& inj) {
+    auto inject = [&](size_t ci, double size, Injection& inj) {
+        const std::string& c = cands[ci];
         EffectInfo info;
         findEffect(c, info);
         std::map<std::string, double> vals = effectStart(cx, c, base.values);
@@ -214,7 +215,7 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         inj.size = size;
         inj.ok = residualVector(cx, s2, vals, fitIdx, r) && r.size() == n;
         if (!inj.ok) return;
-        const std::vector<double>& ref = reference[static_cast<size_t>(std::find(cands.begin(), cands.end(), c) - cands.begin())];
+        const std::vector<double>& ref = reference[ci];
         inj.signal.assign(n, 0.0);
         double ss = 0;
         for (size_t k = 0; k < n; ++k)
@@ -255,11 +256,11 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         EffectInfo info;
         findEffect(c, info);
         const EffectParam q = scaledParam(info.params.front(), cx.muScale);
-        if (job.level < 0) { inject(c, so.sizes.at(c), job.inj); return; }
+        if (job.level < 0) { inject(job.cand, so.sizes.at(c), job.inj); return; }
         const double from = effectVanishes(cx, c, q);
         const double target = job.level * out.noiseRms;
         Injection hi;
-        inject(c, sizeAt(q, from, 1.0), hi);
+        inject(job.cand, sizeAt(q, from, 1.0), hi);
         if (!hi.ok || cancelled()) { job.inj = hi; return; }
         if (hi.rms < target) {
             job.inj = std::move(hi);
@@ -273,7 +274,7 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         for (int it = 0; it < 24 && !cancelled(); ++it) {  // the signal grows with the size
             const double mid = 0.5 * (lo + up);
             Injection m;
-            inject(c, sizeAt(q, from, mid), m);
+            inject(job.cand, sizeAt(q, from, mid), m);
             if (!m.ok) break;
             if (m.rms < target) lo = mid;
             else { up = mid; job.inj = std::move(m); }
@@ -295,6 +296,28 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
 
     std::vector<const LinearCandidate*> all;
     for (const LinearCandidate& lc : lin) all.push_back(&lc);
+    // The noise replicas every row uses (the same seeds for every effect and level).
+    std::vector<Vec> noises;
+    for (int b = 0; b < so.replicas; ++b) {
+        const std::vector<double> e = noiseReplica(blocks, n, replicaSeed + static_cast<uint64_t>(b));
+        noises.push_back(Eigen::Map<const Vec>(e.data(), static_cast<Eigen::Index>(n)));
+    }
+    // Per baseline column held on its bound: the selection without it, and every candidate refitted
+    // without it (made once, for all the levels of the effect that holds it).
+    struct Held {
+        Selector sel;
+        std::vector<LinearCandidate> lin;
+    };
+    std::map<Eigen::Index, Held> heldCache;
+    auto heldSelection = [&](Eigen::Index col) -> const Held& {
+        auto it = heldCache.find(col);
+        if (it == heldCache.end()) {
+            Held h{makeSelector(col), lin};
+            for (LinearCandidate& lc : h.lin) finish(lc, col);
+            it = heldCache.emplace(col, std::move(h)).first;
+        }
+        return it->second;
+    };
     for (size_t j = 0; j < jobs.size(); ++j) {
         if (cancelled()) { out.message = "cancelled"; return out; }
         Job& job = jobs[j];
@@ -319,12 +342,8 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         row.signalRms = job.inj.rms;
         row.snr = job.inj.rms / out.noiseRms;
         const Eigen::Index held = heldCol[job.cand];
-        const Selector jobSel = held < 0 ? sel : makeSelector(held);
-        std::vector<LinearCandidate> heldLin;  // the other candidates with the held column removed
-        if (held >= 0) {
-            heldLin = lin;
-            for (LinearCandidate& lc : heldLin) finish(lc, held);
-        }
+        const Held* h = held < 0 ? nullptr : &heldSelection(held);
+        const Selector& jobSel = h ? h->sel : sel;
         {
             const Eigen::Map<const Vec> sv(job.inj.signal.data(), static_cast<Eigen::Index>(n));
             const double vis = std::max(sv.squaredNorm() - squaredNorm(jobSel.base.Qc, sv), 0.0);
@@ -336,13 +355,11 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         vals[c + "." + row.sizeParam] = job.inj.size;
         linearise(c, vals, atSize);
         std::vector<const LinearCandidate*> cs = all;
-        if (held >= 0)
-            for (size_t i = 0; i < heldLin.size(); ++i) cs[i] = &heldLin[i];
+        if (h)
+            for (size_t i = 0; i < h->lin.size(); ++i) cs[i] = &h->lin[i];
         cs[job.cand] = &atSize;
         const Eigen::Map<const Vec> sig(job.inj.signal.data(), static_cast<Eigen::Index>(n));
-        for (int b = 0; b < so.replicas; ++b) {
-            const std::vector<double> noise = noiseReplica(blocks, n, replicaSeed + static_cast<uint64_t>(b));
-            const Vec nv = Eigen::Map<const Vec>(noise.data(), static_cast<Eigen::Index>(n));
+        for (const Vec& nv : noises) {
             const Vec e = sig + nv;
             const int p = jobSel.pick(e, cs, static_cast<int>(job.cand), &nv);
             ++row.replicas;
