@@ -23,7 +23,7 @@ SimParams baseParams() {
     findPreset("default", p);
     SimParams s = p.params;
     s.drive.amplitude_m = 1.0e-3;
-    s.rateState.epsT_N_per_m = s.coulomb.epsT_N_per_m = 1.0e6;
+    s.lawParams<RateStateParams>().epsT_N_per_m = s.lawParams<CoulombParams>().epsT_N_per_m = 1.0e6;
     s.cycles = 20;
     return s;
 }

@@ -1,5 +1,10 @@
 #include "params.hpp"
 
+#include <cctype>
+#include <variant>
+
+#include "friction/friction_law.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -8,42 +13,14 @@
 namespace stickslip {
 
 namespace {
-
-void requirePositive(ParamIssues& out, const char* field, double v) {
-    if (!(std::isfinite(v) && v > 0.0)) out.push_back({field, v, "> 0"});
-}
-void requireNonNegative(ParamIssues& out, const char* field, double v) {
-    if (!(std::isfinite(v) && v >= 0.0)) out.push_back({field, v, ">= 0"});
-}
-void requireFinite(ParamIssues& out, const char* field, double v) {
-    if (!std::isfinite(v)) out.push_back({field, v, "finite"});
-}
 void append(ParamIssues& out, const ParamIssues& more) { out.insert(out.end(), more.begin(), more.end()); }
-
 }  // namespace
-
-std::string ParamIssue::message() const {
-    std::ostringstream s;
-    s.precision(6);
-    s << field << " = " << value << " is out of range: must be " << allowed;
-    return s.str();
-}
-
-std::string formatIssues(const ParamIssues& issues) {
-    std::string out;
-    for (const auto& i : issues) {
-        if (!out.empty()) out += '\n';
-        out += i.message();
-    }
-    return out;
-}
 
 ParamIssues DriveParams::validate() const {
     ParamIssues out;
-    requireNonNegative(out, "A", amplitude_m);
-    if (std::isfinite(amplitude_m) && amplitude_m > 1.0) out.push_back({"A", amplitude_m, "<= 1 m"});
-    requirePositive(out, "f", frequency_Hz);
-    requireFinite(out, "phase", phase_rad);
+    checkParam("A", amplitude_m, out);
+    checkParam("f", frequency_Hz, out);
+    checkParam("phase", phase_rad, out);
     return out;
 }
 double DriveParams::omega() const { return 2.0 * std::numbers::pi * frequency_Hz; }
@@ -51,10 +28,10 @@ double DriveParams::period() const { return 1.0 / frequency_Hz; }
 
 ParamIssues RigParams::validate() const {
     ParamIssues out;
-    requirePositive(out, "tN", normalForce_N);
-    requireNonNegative(out, "k", stiffness_N_per_m);
-    requirePositive(out, "m", mass_kg);
-    requireNonNegative(out, "c", damping_Ns_per_m);
+    checkParam("tN", normalForce_N, out);
+    checkParam("k", stiffness_N_per_m, out);
+    checkParam("m", mass_kg, out);
+    checkParam("c", damping_Ns_per_m, out);
     return out;
 }
 double RigParams::naturalFrequency_rad_s() const { return std::sqrt(stiffness_N_per_m / mass_kg); }
@@ -65,29 +42,10 @@ double RigParams::dampingRatio() const {
 
 double dampingFromRatio(double zeta, double k, double m) { return 2.0 * zeta * std::sqrt(k * m); }
 
-ParamIssues RateStateParams::validate() const {
-    ParamIssues out;
-    requireNonNegative(out, "mu", mu);
-    requirePositive(out, "eta", eta_s_per_m);
-    requirePositive(out, "Dc", Dc_m);
-    requireNonNegative(out, "C1", C1);
-    requirePositive(out, "r", r);
-    requirePositive(out, "vc", vc_mps);
-    requirePositive(out, "epsT", epsT_N_per_m);
-    return out;
-}
-
-ParamIssues CoulombParams::validate() const {
-    ParamIssues out;
-    requireNonNegative(out, "mu", mu);
-    requirePositive(out, "epsT", epsT_N_per_m);
-    return out;
-}
-
 ParamIssues IntegrationParams::validate() const {
     ParamIssues out;
-    requirePositive(out, "dt", dt_s);
-    requirePositive(out, "output_every", outputInterval_s);
+    checkParam("dt", dt_s, out);
+    checkParam("output_every", outputInterval_s, out);
     if (maxSteps < 1) out.push_back({"max_steps", static_cast<double>(maxSteps), ">= 1"});
     // The adaptive integrator's own range (AdaptiveOptions::validate).
     if (!(tolerance == 0.0 || (tolerance >= 1e-5 && tolerance <= 0.5)))
@@ -106,11 +64,10 @@ ParamIssues SimParams::validate() const {
     ParamIssues out;
     append(out, drive.validate());
     append(out, rig.validate());
-    if (law == LawKind::RateState) append(out, rateState.validate());
-    else append(out, coulomb.validate());
+    append(out, std::visit([](const auto& l) { return l.params.validate(); }, makeLaw(*this)));
     append(out, integration.validate());
-    requirePositive(out, "cycles", cycles);
-    requireNonNegative(out, "transient", transientCycles);
+    checkParam("cycles", cycles, out);
+    checkParam("transient", transientCycles, out);
     // The step must resolve the forcing: at least 8 steps per period.
     if (integration.dt_s > 0.0 && drive.frequency_Hz > 0.0 && integration.dt_s > drive.period() / 8.0)
         out.push_back({"dt", integration.dt_s, "<= T/8 = " + std::to_string(drive.period() / 8.0) + " s"});
@@ -132,11 +89,25 @@ double harmonicRunSteps(const SimParams& p) {
     return (p.transientCycles + p.cycles) * p.drive.period() / p.integration.dt_s;
 }
 
-const char* toString(LawKind k) { return k == LawKind::RateState ? "rate-state" : "coulomb"; }
+const char* toString(LawKind k) { return lawInfo(k).key; }
 const char* toString(SetupKind k) { return k == SetupKind::Dynamics ? "dynamics" : "prescribed"; }
+
+namespace {
+// "Rate_State", "ratestate" and "rate-state" name the same law.
+std::string normalisedLawName(const std::string& s) {
+    std::string out;
+    for (char c : s)
+        if (c != '-' && c != '_' && c != ' ') out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+}  // namespace
+
 bool parseLawKind(const std::string& s, LawKind& k) {
-    if (s == "rate-state" || s == "ratestate" || s == "rate_state") { k = LawKind::RateState; return true; }
-    if (s == "coulomb") { k = LawKind::Coulomb; return true; }
+    for (const LawInfo& i : lawRegistry())
+        if (normalisedLawName(s) == normalisedLawName(i.key)) {
+            k = i.kind;
+            return true;
+        }
     return false;
 }
 bool parseSetupKind(const std::string& s, SetupKind& k) {
@@ -145,64 +116,55 @@ bool parseSetupKind(const std::string& s, SetupKind& k) {
     return false;
 }
 
-namespace {
-struct KeyRef {
-    const char* key;
-    double* (*ptr)(SimParams&);
-};
-// μ and ε_T are shared by both laws; they are handled in setParam.
-const KeyRef kKeys[] = {
-    {"A", [](SimParams& p) { return &p.drive.amplitude_m; }},
-    {"f", [](SimParams& p) { return &p.drive.frequency_Hz; }},
-    {"phase", [](SimParams& p) { return &p.drive.phase_rad; }},
-    {"tN", [](SimParams& p) { return &p.rig.normalForce_N; }},
-    {"k", [](SimParams& p) { return &p.rig.stiffness_N_per_m; }},
-    {"m", [](SimParams& p) { return &p.rig.mass_kg; }},
-    {"c", [](SimParams& p) { return &p.rig.damping_Ns_per_m; }},
-    {"mu", [](SimParams& p) { return &p.rateState.mu; }},
-    {"eta", [](SimParams& p) { return &p.rateState.eta_s_per_m; }},
-    {"Dc", [](SimParams& p) { return &p.rateState.Dc_m; }},
-    {"C1", [](SimParams& p) { return &p.rateState.C1; }},
-    {"r", [](SimParams& p) { return &p.rateState.r; }},
-    {"vc", [](SimParams& p) { return &p.rateState.vc_mps; }},
-    {"epsT", [](SimParams& p) { return &p.rateState.epsT_N_per_m; }},
-    {"dt", [](SimParams& p) { return &p.integration.dt_s; }},
-    {"output_every", [](SimParams& p) { return &p.integration.outputInterval_s; }},
-    {"cycles", [](SimParams& p) { return &p.cycles; }},
-    {"transient", [](SimParams& p) { return &p.transientCycles; }},
-};
-}  // namespace
-
 std::vector<std::string> paramKeys() {
     std::vector<std::string> keys;
-    for (const auto& k : kKeys) keys.emplace_back(k.key);
+    for (const ParamDef& d : paramTable()) keys.emplace_back(d.key);
+    return keys;
+}
+
+std::vector<std::string> paramKeysFor(LawKind law) {
+    std::vector<std::string> keys;
+    for (const ParamDef& d : paramTable())
+        if (d.group != ParamGroup::FrictionLaw || lawHasParam(law, d.key)) keys.emplace_back(d.key);
     return keys;
 }
 
 bool setParam(SimParams& p, const std::string& key, double value, std::string* error) {
-    for (const auto& k : kKeys) {
-        if (key == k.key) {
-            *k.ptr(p) = value;
-            if (key == "mu") p.coulomb.mu = value;
-            if (key == "epsT") p.coulomb.epsT_N_per_m = value;
-            return true;
+    const ParamDef* d = findParam(key);
+    if (!d) {
+        if (error) {
+            std::string list;
+            for (const ParamDef& r : paramTable()) list += std::string(list.empty() ? "" : " ") + r.key;
+            *error = "unknown parameter '" + key + "' (known: " + list + ")";
         }
+        return false;
     }
-    if (error) {
-        std::string list;
-        for (const auto& k : kKeys) list += std::string(list.empty() ? "" : " ") + k.key;
-        *error = "unknown parameter '" + key + "' (known: " + list + ")";
+    if (d->field) {
+        *d->field(p) = value;
+        return true;
     }
-    return false;
+    for (const LawInfo& law : lawRegistry())
+        if (double* f = law.field(p, key)) *f = value;
+    return true;
 }
 
 bool getParam(const SimParams& p, const std::string& key, double& value) {
-    for (const auto& k : kKeys) {
-        if (key == k.key) {
-            value = *k.ptr(const_cast<SimParams&>(p));
+    const ParamDef* d = findParam(key);
+    if (!d) return false;
+    SimParams& q = const_cast<SimParams&>(p);  // the accessors only read here
+    if (d->field) {
+        value = *d->field(q);
+        return true;
+    }
+    if (double* f = lawInfo(p.law).field(q, key)) {
+        value = *f;
+        return true;
+    }
+    for (const LawInfo& law : lawRegistry())
+        if (double* f = law.field(q, key)) {
+            value = *f;
             return true;
         }
-    }
     return false;
 }
 

@@ -6,17 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "friction/law_list.hpp"
+#include "param_table.hpp"
+
 namespace stickslip {
 
-// One violated constraint: which field, what value it had, what is allowed.
-struct ParamIssue {
-    std::string field;    // e.g. "tN"
-    double value = 0.0;   // offending value
-    std::string allowed;  // e.g. "> 0"
-    std::string message() const;  // "tN = -1 is out of range: must be > 0"
-};
-
-using ParamIssues = std::vector<ParamIssue>;
 
 // Stage motion u(t) = A sin(2π f t + phase).
 struct DriveParams {
@@ -42,26 +36,6 @@ struct RigParams {
 // c for a given damping ratio ζ: c = 2 ζ sqrt(k m).
 double dampingFromRatio(double zeta, double stiffness_N_per_m, double mass_kg);
 
-// Elasto-viscoplastic rate- and state-dependent law (Eqs. 1–4).
-struct RateStateParams {
-    double mu = 0.25;                 // μ, static coefficient of friction [-]
-    double eta_s_per_m = 0.6;         // η, fluidity (viscosity) [s/m]
-    double Dc_m = 20.0e-6;            // D_c, critical slip distance [m]
-    double C1 = 0.25;                 // C1, amplitude of K1(α) [-]
-    double r = 1.0;                   // r, scale of α in K1(α) = C1 (exp(α/r) − 1) [-]
-    double vc_mps = 0.1;              // v_c = 1/C2, characteristic velocity [m/s]
-    double epsT_N_per_m = 1.0e6;      // ε_T, tangential penalty stiffness [N/m]
-    ParamIssues validate() const;
-    double C2() const { return 1.0 / vc_mps; }  // [s/m]
-};
-
-// Ideal elasto-plastic Coulomb law: Φ = |F| − μ t_N.
-struct CoulombParams {
-    double mu = 0.25;                 // μ [-]
-    double epsT_N_per_m = 1.0e6;      // ε_T [N/m]
-    ParamIssues validate() const;
-};
-
 struct IntegrationParams {
     double dt_s = 1.0 / 30000.0;            // time step [s] (T/10 000 at 3 Hz)
     double outputInterval_s = 5.0e-4;       // output sample spacing [s]; rounded to a multiple of dt
@@ -78,7 +52,6 @@ struct IntegrationParams {
     long outputEvery() const;
 };
 
-enum class LawKind { RateState, Coulomb };
 enum class SetupKind { Dynamics, Prescribed };
 
 const char* toString(LawKind);
@@ -92,12 +65,15 @@ struct SimParams {
     RigParams rig;
     LawKind law = LawKind::RateState;
     SetupKind setup = SetupKind::Dynamics;
-    RateStateParams rateState;
-    CoulombParams coulomb;
+    RegisteredLaws::ParamTuple lawSet;   // the parameters of every registered law; `law` picks one
     IntegrationParams integration;
     double cycles = 20.0;            // recorded forcing cycles [-]
     double transientCycles = 0.0;    // cycles simulated and discarded first [-]
     ParamIssues validate() const;    // all of the above, fields prefixed by nothing (keys as in the CLI)
+    template <class P>
+    P& lawParams() { return std::get<P>(lawSet); }
+    template <class P>
+    const P& lawParams() const { return std::get<P>(lawSet); }
 };
 
 // Empty when a run of `steps` time steps fits `maxSteps`, else the failure message
@@ -107,14 +83,13 @@ std::string stepBudgetProblem(double steps, long maxSteps);
 // Steps a harmonic run of `p` takes: (transient + cycles) T / dt.
 double harmonicRunSteps(const SimParams& p);
 
-// "tN = -1 is out of range: must be > 0; k = ..." — one line per issue.
-std::string formatIssues(const ParamIssues&);
-
-// Keys as used on the command line and in sessions: A f phase tN k m c mu eta Dc C1 r vc epsT dt output_every cycles transient.
-// The μ and ε_T keys set both the rate-state and the Coulomb law.
-// Returns false (and an explanation) for an unknown key.
+// Keys as used on the command line and in sessions: the rows of paramTable() (param_table.hpp).
+// A law key (μ, ε_T, D_c, …) sets it in every law that has it; getParam reads the selected
+// law's value (or the first law having the key). Returns false (and an explanation) for an unknown key.
 bool setParam(SimParams&, const std::string& key, double value, std::string* error = nullptr);
 bool getParam(const SimParams&, const std::string& key, double& value);
 std::vector<std::string> paramKeys();
+// The keys a run of `p` uses: drive, rig, the selected law's and the integration keys.
+std::vector<std::string> paramKeysFor(LawKind law);
 
 }  // namespace stickslip

@@ -14,8 +14,8 @@ SimParams fig20Base() {
     p.rig.stiffness_N_per_m = 8446.0;
     p.rig.mass_kg = 0.53;
     p.rig.damping_Ns_per_m = dampingFromRatio(0.005, p.rig.stiffness_N_per_m, p.rig.mass_kg);
-    p.rateState = RateStateParams{};
-    p.coulomb = CoulombParams{};
+    p.lawParams<RateStateParams>() = RateStateParams{};
+    p.lawParams<CoulombParams>() = CoulombParams{};
     p.integration.dt_s = p.drive.period() / 10000.0;
     p.integration.outputInterval_s = 5.0e-4;
     p.cycles = 20;
@@ -26,8 +26,8 @@ SimParams fig20Base() {
 SimParams prescribedSet(double eta, double vc, double tN, double A, double f) {
     SimParams p = fig20Base();
     p.setup = SetupKind::Prescribed;
-    p.rateState.eta_s_per_m = eta;
-    p.rateState.vc_mps = vc;
+    p.lawParams<RateStateParams>().eta_s_per_m = eta;
+    p.lawParams<RateStateParams>().vc_mps = vc;
     p.rig.normalForce_N = tN;
     p.drive.amplitude_m = A;
     p.drive.frequency_Hz = f;
@@ -54,12 +54,12 @@ std::vector<Preset> builtinPresets() {
         p.rig.stiffness_N_per_m = 3034.0;
         p.rig.normalForce_N = 6.3;
         p.rig.damping_Ns_per_m = dampingFromRatio(0.005, p.rig.stiffness_N_per_m, p.rig.mass_kg);
-        p.rateState.epsT_N_per_m = p.coulomb.epsT_N_per_m = 1.1e4;
+        p.lawParams<RateStateParams>().epsT_N_per_m = p.lawParams<CoulombParams>().epsT_N_per_m = 1.1e4;
         v.push_back({"fig19", "Fig. 19d: k = 3034 N/m, t_N = 6.3 N (sweep A; also k = 1547, 410); eps_T = 1.1e4 N/m", p});
     }
     {
         SimParams p = fig20Base();
-        p.rateState.epsT_N_per_m = p.coulomb.epsT_N_per_m = 1.1e4;
+        p.lawParams<RateStateParams>().epsT_N_per_m = p.lawParams<CoulombParams>().epsT_N_per_m = 1.1e4;
         v.push_back({"fig20",
                      "Fig. 20: t_N = 6.2 N, k = 8446 N/m, f = 3 Hz, A = 1 mm (sweep A 0.1-5 mm); eps_T = 1.1e4 N/m "
                      "gives the paper's 0.33 mm stick threshold",
@@ -68,7 +68,7 @@ std::vector<Preset> builtinPresets() {
     {
         SimParams p = fig20Base();
         p.drive.amplitude_m = 0.40e-3;
-        p.rateState.epsT_N_per_m = p.coulomb.epsT_N_per_m = 1.1e4;
+        p.lawParams<RateStateParams>().epsT_N_per_m = p.lawParams<CoulombParams>().epsT_N_per_m = 1.1e4;
         p.transientCycles = 60;
         p.cycles = 80;
         v.push_back({"fig22", "Fig. 22: A = 0.40 mm just past the stick threshold (phase portrait, Poincare, spectrum)", p});
@@ -76,7 +76,7 @@ std::vector<Preset> builtinPresets() {
     {
         SimParams p = fig20Base();
         p.drive.amplitude_m = 4.0e-3;
-        p.rateState.eta_s_per_m = 0.2;
+        p.lawParams<RateStateParams>().eta_s_per_m = 0.2;
         p.transientCycles = 60;
         p.cycles = 80;
         v.push_back({"fig23", "Fig. 23: eta = 0.2 s/m, A = 4 mm: irregular motion at large amplitude; eps_T = 1e6 N/m", p});

@@ -24,7 +24,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         FUZZ_CHECK(getParam(s.settings.params, key, v), "no value for %s", key.c_str());
         FUZZ_CHECK(std::isfinite(v), "%s is not finite", key.c_str());
     }
-    FUZZ_CHECK(std::isfinite(s.settings.params.coulomb.mu) && std::isfinite(s.settings.params.coulomb.epsT_N_per_m),
+    FUZZ_CHECK(std::isfinite(s.settings.params.lawParams<CoulombParams>().mu) && std::isfinite(s.settings.params.lawParams<CoulombParams>().epsT_N_per_m),
                "Coulomb mu/epsT not finite");
     const QByteArray written = s.toJson();
     Session back;

@@ -133,8 +133,6 @@ py::dict paramsDict(const SimParams& p) {
     for (const std::string& key : paramKeys()) {
         double v = 0;
         if (!getParam(p, key, v)) continue;
-        if (p.law == LawKind::Coulomb && key == "mu") v = p.coulomb.mu;
-        if (p.law == LawKind::Coulomb && key == "epsT") v = p.coulomb.epsT_N_per_m;
         d[py::str(key)] = v;
     }
     return d;

@@ -45,9 +45,11 @@ void BifurcationPlot::appendColumn(SweepBranch branch, double paramValue, const 
     QwtPlotCurve* c = curve(title);
     if (!c) {
         // Up drawn first, down on top with smaller open markers so both stay visible.
-        const bool coul = law == LawKind::Coulomb;
-        QColor col = branch == SweepBranch::Up ? style::branchUp() : style::branchDown();
-        if (coul) col = branch == SweepBranch::Up ? QColor(44, 160, 44) : QColor(255, 127, 14);
+        // Per law slot a pair of branch colours (up, down); the rate-state law's are the defaults.
+        static const QColor up[] = {style::branchUp(), QColor(44, 160, 44), QColor(148, 103, 189)};
+        static const QColor down[] = {style::branchDown(), QColor(255, 127, 14), QColor(140, 86, 75)};
+        const int k = style::slot(law) % 3;
+        const QColor col = branch == SweepBranch::Up ? up[k] : down[k];
         c = addCurve(title, QPen(col));
         c->setStyle(QwtPlotCurve::NoCurve);
         c->setPaintAttribute(QwtPlotCurve::FilterPoints, false);

@@ -159,8 +159,7 @@ void FrictionLoopPlot::clearModel(LawKind law) {
 }
 
 void FrictionLoopPlot::clearAll() {
-    marks_[0].clear();
-    marks_[1].clear();
+    for (auto& m : marks_) m.clear();
     updateSummary();
     PlotWidget::clearAll();
 }
@@ -169,7 +168,8 @@ void FrictionLoopPlot::clearAll() {
 // loops' colours (the loops themselves carry no legend entries).
 void FrictionLoopPlot::updateSummary() {
     QStringList lines;
-    for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+    for (int k = 0; k < kMaxLawSlots; ++k) {
+        const LawKind law = static_cast<LawKind>(k);
         const auto& m = marks_[style::slot(law)];
         if (m.empty()) continue;
         const auto cw = std::count_if(m.begin(), m.end(), [](const LoopMark& x) { return x.orientation < 0; });
@@ -177,7 +177,7 @@ void FrictionLoopPlot::updateSummary() {
         const auto flat = static_cast<long>(m.size()) - cw - ccw;
         QString line = QStringLiteral("%1%2: <span style='color:%3'>%4 clockwise</span>, "
                                       "<span style='color:%5'>%6 counter-clockwise</span>")
-                           .arg(modelLabel(law), law == LawKind::Coulomb ? QStringLiteral(" (dashed)") : QString())
+                           .arg(modelLabel(law), style::modelPenStyle(law) == Qt::DashLine ? QStringLiteral(" (dashed)") : QString())
                            .arg(style::clockwise().name())
                            .arg(cw)
                            .arg(style::counterClockwise().name())

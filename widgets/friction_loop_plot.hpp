@@ -40,7 +40,7 @@ public:
 
 private:
     void updateSummary();
-    std::vector<LoopMark> marks_[2];
+    std::vector<LoopMark> marks_[kMaxLawSlots];
     QwtPlotTextLabel* summary_ = nullptr;
 };
 

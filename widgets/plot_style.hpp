@@ -15,9 +15,17 @@ inline QColor clockwise() { return QColor(31, 119, 180); }
 inline QColor counterClockwise() { return QColor(214, 39, 40); }
 inline QColor branchUp() { return QColor(31, 119, 180); }
 inline QColor branchDown() { return QColor(214, 39, 40); }
-inline QColor modelColor(LawKind law) { return law == LawKind::Coulomb ? coulomb() : rateState(); }
-inline Qt::PenStyle modelPenStyle(LawKind law) { return law == LawKind::Coulomb ? Qt::DashLine : Qt::SolidLine; }
-inline int slot(LawKind law) { return law == LawKind::Coulomb ? 1 : 0; }
+// A law's colour and pen by its slot (its index in the law registry): the paper's rate-state
+// law blue and solid, Coulomb orange and dashed, further laws from the same palette.
+inline int slot(LawKind law) { return static_cast<int>(law); }
+inline QColor modelColor(LawKind law) {
+    static const QColor c[] = {rateState(), coulomb(), QColor(44, 160, 44), QColor(148, 103, 189), QColor(140, 86, 75)};
+    return c[slot(law) % 5];
+}
+inline Qt::PenStyle modelPenStyle(LawKind law) {
+    static const Qt::PenStyle s[] = {Qt::SolidLine, Qt::DashLine, Qt::DashDotLine, Qt::DotLine};
+    return s[slot(law) % 4];
+}
 
 // Width of model curves [px]. Qt strokes antialiased pens of at most 1 px with its fast
 // cosmetic stroker; wider pens go through QStroker and a polygon fill, ~20x slower for

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <QVBoxLayout>
 
+#include "core/friction/friction_law.hpp"
 #include "core/io/csv_table.hpp"
 #include "decimated_curve.hpp"
 #include "plot_export.hpp"
@@ -43,7 +44,7 @@ bool measuredFromTable(const io::CsvTable& table, const std::string& xColumn, co
 }
 
 QString modelLabel(LawKind law) {
-    return law == LawKind::Coulomb ? QStringLiteral("Coulomb") : QStringLiteral("rate-state");
+    return QString::fromUtf8(lawInfo(law).label);
 }
 
 namespace {

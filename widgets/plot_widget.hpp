@@ -41,6 +41,8 @@ bool measuredFromTable(const io::CsvTable& table, const std::string& xColumn, co
 
 // "rate-state" / "Coulomb": the legend prefix used for curves of each model.
 QString modelLabel(LawKind law);
+// Per-law storage in the plots is indexed by the law's slot (its registry index).
+inline constexpr int kMaxLawSlots = 8;
 
 class PlotWidget : public QWidget {
     Q_OBJECT

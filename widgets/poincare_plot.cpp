@@ -23,7 +23,7 @@ void PoincarePlot::setSection(const std::vector<double>& slider_m, const std::ve
     auto* c = addCurve(modelLabel(law) + QStringLiteral(": section"), law, style::modelColor(law));
     c->setStyle(QwtPlotCurve::NoCurve);
     const QColor col = style::modelColor(law);
-    c->setSymbol(new QwtSymbol(law == LawKind::Coulomb ? QwtSymbol::Cross : QwtSymbol::Ellipse, QBrush(col), QPen(col),
+    c->setSymbol(new QwtSymbol(style::slot(law) % 3 == 1 ? QwtSymbol::Cross : style::slot(law) % 3 == 2 ? QwtSymbol::Triangle : QwtSymbol::Ellipse, QBrush(col), QPen(col),
                                n > 2000 ? QSize(2, 2) : QSize(4, 4)));
     c->setSamples(pts);
     rescale();

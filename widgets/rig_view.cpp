@@ -1,5 +1,7 @@
 #include "rig_view.hpp"
 
+#include "core/friction/friction_law.hpp"
+
 #include <QComboBox>
 #include <QDateTime>
 #include <QHBoxLayout>
@@ -308,7 +310,7 @@ void RigView::syncControls() {
         timeSlider_->setValue(t1 > t0 ? static_cast<int>(std::lround(1000.0 * (time_s_ - t0) / (t1 - t0))) : 0);
     }
     timeLabel_->setText(has ? QStringLiteral("t = %1 s").arg(time_s_, 0, 'f', 3) : QString());
-    const double mu = params_.law == LawKind::Coulomb ? params_.coulomb.mu : params_.rateState.mu;
+    const double mu = lawMu(params_);
     canvas_->show(has ? &s : nullptr, scale_m_, mu);
 }
 

@@ -158,7 +158,8 @@ void TimeSeriesPlot::rebuild() {
     picker_->setAxis(QwtPlot::xBottom, QwtPlot::yLeft);
     setFactors(1.0, anyLeft ? 1.0e3 : 1.0);
 
-    for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+    for (int k = 0; k < kMaxLawSlots; ++k) {
+        const LawKind law = static_cast<LawKind>(k);
         const ModelRun& mr = runs_[style::slot(law)];
         if (!mr.present || mr.run.samples.empty()) continue;
         const auto& samples = mr.run.samples;

@@ -57,7 +57,7 @@ private:
         double period_s = 1.0;
     };
     void rebuild();
-    ModelRun runs_[2];
+    ModelRun runs_[kMaxLawSlots];
     std::vector<std::pair<Channel, MeasuredSeries>> measured_;
     unsigned channels_ = channelBit(Channel::Stage) | channelBit(Channel::Slider) | channelBit(Channel::FrictionRatio);
     double firstCycle_ = 0.0, lastCycle_ = 0.0;

@@ -7,15 +7,19 @@
 #include "mpi_runner.hpp"
 #include "core/presets.hpp"
 
+#include "core/friction/friction_law.hpp"
+
 namespace stickslip::cli {
 
 void addSimOptions(CLI::App* cmd, SimOptions& o) {
     cmd->add_option("--preset", o.preset, "Parameter set to start from (" + presetNames() + ")")
         ->capture_default_str();
-    cmd->add_option("--model", o.model, "Friction law: rate-state or coulomb (default: the preset's)");
+    std::string laws;
+    for (const LawInfo& i : lawRegistry()) laws += std::string(laws.empty() ? "" : ", ") + i.key;
+    cmd->add_option("--model", o.model, "Friction law: " + laws + " (default: the preset's)");
     cmd->add_option("--setup", o.setup, "dynamics (spring-mass rig) or prescribed (slip imposed on the block)");
-    std::string keys;
-    for (const std::string& k : paramKeys()) keys += " " + k;
+    std::string keys;  // from the parameter table: key [SI unit]
+    for (const ParamDef& d : paramTable()) keys += std::string(" ") + d.key + (*d.unit ? std::string("[") + d.unit + "]" : "");
     cmd->add_option("--set", o.sets,
                     "KEY=VALUE, repeatable; VALUE in SI or with a unit (0.4mm, 20um, 6.2N, 3Hz, 0.5kg, 0.6s/m, "
                     "0.1m/s, 1e6N/m). KEY:" + keys)

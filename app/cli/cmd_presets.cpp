@@ -13,8 +13,6 @@ namespace {
 std::string valueWithUnit(const SimParams& p, const std::string& key) {
     double v = 0;
     getParam(p, key, v);
-    if (p.law == LawKind::Coulomb && key == "mu") v = p.coulomb.mu;
-    if (p.law == LawKind::Coulomb && key == "epsT") v = p.coulomb.epsT_N_per_m;
     std::string unit;
     io::paramUnit(key, unit);
     char buf[96];

@@ -20,6 +20,7 @@
 #include "cancel.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "core/friction/friction_law.hpp"
 #include "core/analysis/correlation.hpp"
 #include "core/analysis/poincare.hpp"
 #include "core/analysis/spectrum.hpp"
@@ -143,7 +144,7 @@ bool sweepA(const SimParams& base, LawKind law, const ReproduceOptions& o, Sweep
     }
     QElapsedTimer clock;
     clock.start();
-    out = bifurcationSweep(p, so, progressTo(std::string("sweep A, ") + (law == LawKind::Coulomb ? "Coulomb" : "rate-state")));
+    out = bifurcationSweep(p, so, progressTo(std::string("sweep A, ") + lawInfo(law).label));
     std::cerr << "  " << out.points.size() << " values in " << clock.elapsed() / 1000.0 << " s\n";
     if (!out.ok()) {
         if (stopIfCancelled(exitCode)) return false;
@@ -154,7 +155,7 @@ bool sweepA(const SimParams& base, LawKind law, const ReproduceOptions& o, Sweep
 }
 
 void appendSweepCsv(std::ostringstream& csv, std::ostringstream& summary, const SweepResult& r, LawKind law) {
-    const char* model = law == LawKind::Coulomb ? "coulomb" : "rate-state";
+    const char* model = toString(law);
     for (const SweepPoint& pt : r.points) {
         const char* dir = pt.direction < 0 ? "down" : "up";
         for (size_t i = 0; i < pt.section.size(); ++i) {
@@ -299,7 +300,7 @@ void runFigure(const ReproduceOptions& o, int& exitCode) {
                                     .arg(base.rig.stiffness_N_per_m)
                                     .arg(base.rig.normalForce_N)
                                     .arg(base.drive.frequency_Hz)
-                                    .arg(base.rateState.epsT_N_per_m, 0, 'g', 3);
+                                    .arg(base.lawParams<RateStateParams>().epsT_N_per_m, 0, 'g', 3);
         widgets::BifurcationPlot a, c;
         a.setAxes(aTitle, 1e3, xTitle, 1e3);
         c.setAxes(aTitle, 1e3, xTitle, 1e3);
@@ -307,7 +308,7 @@ void runFigure(const ReproduceOptions& o, int& exitCode) {
                         QString::fromStdString(fig) + QStringLiteral(", rate-state model: ") + setText);
         std::vector<const QwtPlot*> plots{a.plot()};
         if (o.coulomb) {
-            fillBifurcation(c, cl, LawKind::Coulomb, QString::fromStdString(fig) + QStringLiteral(", Coulomb model (μ = %1)").arg(base.coulomb.mu));
+            fillBifurcation(c, cl, LawKind::Coulomb, QString::fromStdString(fig) + QStringLiteral(", Coulomb model (μ = %1)").arg(base.lawParams<CoulombParams>().mu));
             plots.push_back(c.plot());
         }
         exportFigure(plots, 1, QSizeF(180, o.coulomb ? 200 : 110), stem, exitCode);
@@ -343,7 +344,7 @@ void runFigure(const ReproduceOptions& o, int& exitCode) {
         if (!writeText(stem + "_autocorrelation.csv", acsv.str(), exitCode)) return;
     }
 
-    const QString at = QStringLiteral("A = %1 mm, η = %2 s/m").arg(base.drive.amplitude_m * 1e3).arg(base.rateState.eta_s_per_m);
+    const QString at = QStringLiteral("A = %1 mm, η = %2 s/m").arg(base.drive.amplitude_m * 1e3).arg(base.lawParams<RateStateParams>().eta_s_per_m);
     widgets::PhasePortraitPlot phase;
     phase.setRun(run);
     phase.plot()->setTitle(QString::fromStdString(fig) + QStringLiteral(" phase portrait, ") + at);
@@ -381,7 +382,7 @@ void runFigure(const ReproduceOptions& o, int& exitCode) {
     widgets::BifurcationPlot bif;
     bif.setAxes(aTitle, 1e3, xTitle, 1e3);
     fillBifurcation(bif, rs, LawKind::RateState,
-                    QString::fromStdString(fig) + QStringLiteral(", rate-state, η = %1 s/m").arg(base.rateState.eta_s_per_m));
+                    QString::fromStdString(fig) + QStringLiteral(", rate-state, η = %1 s/m").arg(base.lawParams<RateStateParams>().eta_s_per_m));
     exportFigure({bif.plot(), phase.plot(), poincare.plot(), spectrum.plot()}, 2, QSizeF(240, 170), stem, exitCode);
 }
 

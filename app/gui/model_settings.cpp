@@ -1,18 +1,23 @@
 #include "model_settings.hpp"
 
+#include "core/friction/friction_law.hpp"
+
 namespace stickslip::gui {
 
 QString toString(ModelChoice m) {
-    switch (m) {
-    case ModelChoice::RateState: return QStringLiteral("rate-state");
-    case ModelChoice::Coulomb: return QStringLiteral("coulomb");
-    case ModelChoice::Both: return QStringLiteral("both");
-    }
-    return {};
+    if (m == ModelChoice::Both) return QStringLiteral("both");
+    return QString::fromUtf8(stickslip::toString(static_cast<LawKind>(static_cast<int>(m))));
+}
+
+std::vector<ModelChoice> modelChoices() {
+    std::vector<ModelChoice> out;
+    for (LawKind law : allLaws()) out.push_back(lawChoice(law));
+    out.push_back(ModelChoice::Both);
+    return out;
 }
 
 bool parseModelChoice(const QString& s, ModelChoice& out) {
-    for (ModelChoice m : {ModelChoice::RateState, ModelChoice::Coulomb, ModelChoice::Both}) {
+    for (ModelChoice m : modelChoices()) {
         if (s == toString(m)) {
             out = m;
             return true;
@@ -21,13 +26,13 @@ bool parseModelChoice(const QString& s, ModelChoice& out) {
     return false;
 }
 
+LawKind ModelSettings::primaryLaw() const {
+    return model == ModelChoice::Both ? LawKind::RateState : static_cast<LawKind>(static_cast<int>(model));
+}
+
 std::vector<LawKind> ModelSettings::laws() const {
-    switch (model) {
-    case ModelChoice::RateState: return {LawKind::RateState};
-    case ModelChoice::Coulomb: return {LawKind::Coulomb};
-    case ModelChoice::Both: return {LawKind::RateState, LawKind::Coulomb};
-    }
-    return {};
+    if (model == ModelChoice::Both) return {LawKind::RateState, LawKind::Coulomb};
+    return {primaryLaw()};
 }
 
 SimParams ModelSettings::paramsFor(LawKind law) const {

@@ -10,7 +10,12 @@
 
 namespace stickslip::gui {
 
-enum class ModelChoice { RateState, Coulomb, Both };
+// One law alone (its LawKind index; the paper's two are named) or the paper's two overlaid.
+enum class ModelChoice : int { Both = -1, RateState = 0, Coulomb = 1 };
+// The choice of a law alone.
+inline ModelChoice lawChoice(LawKind law) { return static_cast<ModelChoice>(static_cast<int>(law)); }
+// Every choice the app offers: each registered law, then Both.
+std::vector<ModelChoice> modelChoices();
 QString toString(ModelChoice);
 bool parseModelChoice(const QString&, ModelChoice&);
 
@@ -20,6 +25,8 @@ struct ModelSettings {
     QString preset;                           // preset the values came from ("" if none)
     // The laws to run, primary first.
     std::vector<LawKind> laws() const;
+    // The law the parameters follow: the choice's law, the rate-state law for Both.
+    LawKind primaryLaw() const;
     // params with law = `law`.
     SimParams paramsFor(LawKind law) const;
 };

@@ -1,14 +1,17 @@
-// The parameter panel's table: for every SimParams key a label, a display unit with its
-// scale from SI, the slider range and whether the slider is logarithmic (ranges spanning
-// decades: η, D_c, v_c, ε_T, k, dt). Kept apart from the widget so it can be tested.
+// The parameter panel's rows as Qt values, made from the core's parameter table
+// (core/param_table.hpp): label, display unit and scale from SI, slider range, whether the
+// slider is logarithmic (ranges spanning decades: η, D_c, v_c, ε_T, k, dt). Kept apart from
+// the widget so it can be tested.
 #pragma once
 
 #include <QString>
 #include <vector>
 
+#include "core/params.hpp"
+
 namespace stickslip::gui {
 
-enum class ParamGroup { Drive, Rig, FrictionLaw, Integration };
+using stickslip::ParamGroup;
 QString groupTitle(ParamGroup g);
 
 struct ParamSpec {
@@ -21,7 +24,7 @@ struct ParamSpec {
     bool logScale = false;  // slider position ∝ log(value)
     int decimals = 3;       // spin box decimals
     ParamGroup group = ParamGroup::Drive;
-    bool rateStateOnly = false;  // has no meaning for the Coulomb law
+    bool lawKey = false;    // a friction-law parameter: shown for the laws that have it
     QString tooltip;
 };
 

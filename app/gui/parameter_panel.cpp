@@ -1,5 +1,7 @@
 #include "parameter_panel.hpp"
 
+#include "core/friction/friction_law.hpp"
+
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
@@ -41,9 +43,13 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
 
     modelBox_ = new QComboBox(this);
     modelBox_->setObjectName("modelBox");
-    modelBox_->addItem(tr("Rate-state"), int(ModelChoice::RateState));
-    modelBox_->addItem(tr("Coulomb"), int(ModelChoice::Coulomb));
-    modelBox_->addItem(tr("Both overlaid"), int(ModelChoice::Both));
+    for (ModelChoice m : modelChoices()) {
+        const QString name = m == ModelChoice::Both ? tr("Both overlaid")
+                             : m == ModelChoice::RateState
+                                 ? tr("Rate-state")
+                                 : QString::fromUtf8(lawInfo(static_cast<LawKind>(static_cast<int>(m))).label);
+        modelBox_->addItem(name, int(m));
+    }
     form->addRow(tr("Model"), modelBox_);
 
     setupBox_ = new QComboBox(this);
@@ -154,7 +160,7 @@ void ParameterPanel::onSpin(const QString& key, double display) {
 void ParameterPanel::onModel(int index) {
     if (updating_) return;
     settings_.model = static_cast<ModelChoice>(modelBox_->itemData(index).toInt());
-    settings_.params.law = settings_.model == ModelChoice::Coulomb ? LawKind::Coulomb : LawKind::RateState;
+    settings_.params.law = settings_.primaryLaw();
     showValues();
     changed();
 }
@@ -174,7 +180,7 @@ bool ParameterPanel::loadPreset(const QString& name) {
     if (!findPreset(name.toStdString(), p)) return false;
     ModelSettings s = settings_;
     s.params = p.params;
-    s.params.law = s.model == ModelChoice::Coulomb ? LawKind::Coulomb : LawKind::RateState;
+    s.params.law = s.primaryLaw();
     s.preset = name;
     setSettings(s);
     return true;
@@ -182,7 +188,7 @@ bool ParameterPanel::loadPreset(const QString& name) {
 
 void ParameterPanel::setSettings(const ModelSettings& s) {
     settings_ = s;
-    settings_.params.law = s.model == ModelChoice::Coulomb ? LawKind::Coulomb : LawKind::RateState;
+    settings_.params.law = settings_.primaryLaw();
     showValues();
     changed();
 }
@@ -192,18 +198,16 @@ void ParameterPanel::showValues() {
     for (auto it = rows_.begin(); it != rows_.end(); ++it) {
         const ParamSpec* s = findSpec(it.key());
         double v = 0.0;
-        getParam(settings_.params, it.key().toStdString(), v);
-        // μ and ε_T are shared keys; show the active law's value.
-        if (settings_.model == ModelChoice::Coulomb) {
-            if (it.key() == "mu") v = settings_.params.coulomb.mu;
-            if (it.key() == "epsT") v = settings_.params.coulomb.epsT_N_per_m;
-        }
+        getParam(settings_.params, it.key().toStdString(), v);  // a shared key: the primary law's value
         it->spin->setValue(v * s->scale);
         it->slider->setValue(sliderPosition(*s, v * s->scale));
-        const bool enabled = !(s->rateStateOnly && settings_.model == ModelChoice::Coulomb);
-        it->spin->setEnabled(enabled);
-        it->slider->setEnabled(enabled);
-        it->label->setEnabled(enabled);
+        // A law's key is enabled for the laws that have it (greyed out, not hidden, so that
+        // switching the model does not move the panel's rows).
+        bool used = !s->lawKey;
+        for (LawKind law : settings_.laws()) used = used || lawHasParam(law, it.key().toStdString());
+        it->spin->setEnabled(used);
+        it->slider->setEnabled(used);
+        it->label->setEnabled(used);
     }
     modelBox_->setCurrentIndex(modelBox_->findData(int(settings_.model)));
     setupBox_->setCurrentIndex(setupBox_->findData(int(settings_.params.setup)));

@@ -27,7 +27,7 @@ QByteArray Session::toJson() const {
         params.insert(QString::fromStdString(key), v);
     }
     // The Coulomb law keeps its own μ and ε_T (setParam sets both laws at once).
-    QJsonObject coulomb{{"mu", settings.params.coulomb.mu}, {"epsT", settings.params.coulomb.epsT_N_per_m}};
+    QJsonObject coulomb{{"mu", settings.params.lawParams<CoulombParams>().mu}, {"epsT", settings.params.lawParams<CoulombParams>().epsT_N_per_m}};
     QJsonObject root{
         {"format", "stickslip-session"},
         {"version", kFormat},
@@ -78,7 +78,7 @@ bool Session::fromJson(const QByteArray& json, Session& out, QString* error) {
         return fail(QStringLiteral("unknown model \"%1\" (rate-state, coulomb or both)").arg(root.value("model").toString()));
     if (!parseSetupKind(root.value("setup").toString().toStdString(), s.settings.params.setup))
         return fail(QStringLiteral("unknown set-up \"%1\" (dynamics or prescribed)").arg(root.value("setup").toString()));
-    s.settings.params.law = s.settings.model == ModelChoice::Coulomb ? LawKind::Coulomb : LawKind::RateState;
+    s.settings.params.law = s.settings.primaryLaw();
     s.settings.preset = root.value("preset").toString();
     const QJsonObject params = root.value("params").toObject();
     for (auto it = params.begin(); it != params.end(); ++it) {
@@ -89,8 +89,8 @@ bool Session::fromJson(const QByteArray& json, Session& out, QString* error) {
             return fail(QStringLiteral("params.%1: %2").arg(it.key(), QString::fromStdString(why)));
     }
     const QJsonObject coulomb = root.value("coulomb").toObject();
-    if (coulomb.contains("mu")) s.settings.params.coulomb.mu = coulomb.value("mu").toDouble();
-    if (coulomb.contains("epsT")) s.settings.params.coulomb.epsT_N_per_m = coulomb.value("epsT").toDouble();
+    if (coulomb.contains("mu")) s.settings.params.lawParams<CoulombParams>().mu = coulomb.value("mu").toDouble();
+    if (coulomb.contains("epsT")) s.settings.params.lawParams<CoulombParams>().epsT_N_per_m = coulomb.value("epsT").toDouble();
     for (const auto& v : root.value("views").toArray()) s.visibleViews << v.toString();
     s.measuredFile = root.value("measuredFile").toString();
     s.windowState = QByteArray::fromBase64(root.value("windowState").toString().toLatin1());

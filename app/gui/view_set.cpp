@@ -1,5 +1,7 @@
 #include "view_set.hpp"
 
+#include "core/friction/friction_law.hpp"
+
 #include <QVBoxLayout>
 
 #include "param_specs.hpp"
@@ -81,33 +83,33 @@ void ViewSet::showShared(const std::shared_ptr<const RunOutcome>& shared) {
     };
     const double period = o.settings.params.drive.period();
     timeSeries_->updateWhenVisible([this, shared, runOf, period] {
-        for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+        for (LawKind law : allLaws()) {
             if (const ModelRun* mr = runOf(*shared, law)) timeSeries_->setRun(mr->run, period, law);
             else timeSeries_->clearModel(law);
         }
     });
     loop_->updateWhenVisible([this, shared, runOf, period] {
-        for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+        for (LawKind law : allLaws()) {
             if (const ModelRun* mr = runOf(*shared, law)) loop_->setRun(mr->run, period, law);
             else loop_->clearModel(law);
         }
     });
     phase_->updateWhenVisible([this, shared, runOf] {
-        for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+        for (LawKind law : allLaws()) {
             if (const ModelRun* mr = runOf(*shared, law)) phase_->setRun(mr->run, law);
             else phase_->clearModel(law);
         }
     });
     spectrum_->updateWhenVisible([this, shared, runOf, prescribed] {
         spectrum_->setValueTitle(prescribed ? QStringLiteral("PSD of F/t_N [1/Hz]") : QStringLiteral("PSD of x [m²/Hz]"));
-        for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+        for (LawKind law : allLaws()) {
             const ModelRun* mr = runOf(*shared, law);
             if (mr && !mr->spectrumFreq_Hz.empty()) spectrum_->setSpectrum(mr->spectrumFreq_Hz, mr->spectrumPsd, law);
             else spectrum_->clearModel(law);
         }
     });
     acf_->updateWhenVisible([this, shared, runOf] {
-        for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+        for (LawKind law : allLaws()) {
             const ModelRun* mr = runOf(*shared, law);
             if (mr && !mr->acf.empty()) acf_->setAutocorrelation(mr->acfLag_s, mr->acf, law);
             else acf_->clearModel(law);

@@ -1,5 +1,7 @@
 #include "classify.hpp"
 
+#include "../friction/friction_law.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -23,7 +25,7 @@ ParamIssues ClassifyOptions::validate() const {
 }
 
 ClassifyScales classifyScales(const SimParams& p) {
-    const double mu = p.law == LawKind::Coulomb ? p.coulomb.mu : p.rateState.mu;
+    const double mu = lawMu(p);
     ClassifyScales sc;
     sc.x_m = std::max(std::abs(p.drive.amplitude_m), mu * p.rig.normalForce_N / p.rig.stiffness_N_per_m);
     sc.v_mps = sc.x_m * p.drive.omega();

@@ -1,5 +1,7 @@
 #include "lyapunov.hpp"
 
+#include "../friction/friction_law.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <condition_variable>
@@ -12,7 +14,7 @@ namespace stickslip {
 
 SeparationScales separationScales(const SimParams& p) {
     SeparationScales sc;
-    const double mu = p.law == LawKind::Coulomb ? p.coulomb.mu : p.rateState.mu;
+    const double mu = lawMu(p);
     sc.x_m = mu * p.rig.normalForce_N / p.rig.stiffness_N_per_m;
     sc.v_mps = sc.x_m * p.rig.naturalFrequency_rad_s();
     sc.force_N = mu * p.rig.normalForce_N;

@@ -4,6 +4,21 @@
 
 namespace stickslip {
 
+std::vector<ParamDef> CoulombLaw::paramRows() { return {{.key = "mu"}, {.key = "epsT"}}; }
+
+double* CoulombLaw::field(Params& p, std::string_view key) {
+    if (key == "mu") return &p.mu;
+    if (key == "epsT") return &p.epsT_N_per_m;
+    return nullptr;
+}
+
+ParamIssues CoulombParams::validate() const {
+    ParamIssues out;
+    checkParam("mu", mu, out);
+    checkParam("epsT", epsT_N_per_m, out);
+    return out;
+}
+
 double CoulombLaw::slipFunction(const LawState& s, double tN) const { return std::abs(s.force_N) - params.mu * tN; }
 
 double CoulombLaw::steadyStateRatio(double) const { return params.mu; }

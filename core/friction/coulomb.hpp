@@ -1,12 +1,29 @@
 // Ideal elasto-plastic Coulomb friction (paper's comparison model): Φ = |F| − μ t_N.
 #pragma once
 
-#include "../params.hpp"
+#include <string_view>
+#include <vector>
+
+#include "../param_table.hpp"
 #include "law_state.hpp"
 
 namespace stickslip {
 
+// Ideal elasto-plastic Coulomb law: Φ = |F| − μ t_N.
+struct CoulombParams {
+    double mu = 0.25;                 // μ [-]
+    double epsT_N_per_m = 1.0e6;      // ε_T [N/m]
+    ParamIssues validate() const;
+};
+
 struct CoulombLaw {
+    using Params = CoulombParams;
+    static constexpr const char* kKey = "coulomb";
+    static constexpr const char* kLabel = "Coulomb";
+    static constexpr bool kViscous = false;
+    static std::vector<ParamDef> paramRows();  // μ and ε_T: shared with the rate-state law
+    static double* field(Params& p, std::string_view key);
+
     CoulombParams params;
 
     // Return mapping in closed form: elastic trial F_tr = F_n + ε_T Δg; if |F_tr| > μ t_N the

@@ -5,6 +5,53 @@
 
 namespace stickslip {
 
+// Fit ranges: in the prescribed set-up t_N is a reference load (e.g. a band tension), so μ,
+// C1 and η are "per unit reference load" and may be far above 1.
+std::vector<ParamDef> RateStateLaw::paramRows() {
+    using G = ParamGroup;
+    return {
+        {.key = "mu", .label = "μ", .quantity = "dimensionless", .doc = "Static coefficient of friction, Eq. 1",
+         .group = G::FrictionLaw, .lower = 0, .fit = {0.01, 2.0, false}, .fitPrescribed = {1e-3, 1e3, true},
+         .sliderMin = 0.0, .sliderMax = 1.0, .decimals = 4},
+        {.key = "eta", .label = "η", .unit = "s/m", .quantity = "a fluidity", .doc = "Fluidity (viscosity), Eq. 3",
+         .group = G::FrictionLaw, .lower = 0, .lowerOpen = true, .fit = {1e-4, 50.0, true}, .fitPrescribed = {1e-4, 1e4, true},
+         .displayUnit = "s/m", .sliderMin = 0.01, .sliderMax = 10.0, .logSlider = true, .decimals = 4},
+        {.key = "Dc", .label = "D_c", .unit = "m", .quantity = "a length", .doc = "Critical slip distance, Eq. 2",
+         .group = G::FrictionLaw, .lower = 0, .lowerOpen = true, .fit = {1e-8, 1e-2, true}, .displayUnit = "µm",
+         .displayScale = 1e6, .sliderMin = 0.5, .sliderMax = 1000.0, .logSlider = true, .decimals = 2},
+        {.key = "C1", .label = "C1", .quantity = "dimensionless", .doc = "Amplitude of K1(α), Eq. 1",
+         .group = G::FrictionLaw, .lower = 0, .fit = {0.0, 2.0, false}, .fitPrescribed = {1e-4, 1e3, true},
+         .sliderMin = 0.0, .sliderMax = 1.0, .decimals = 4},
+        {.key = "r", .label = "r", .quantity = "dimensionless", .doc = "Scale of α in K1(α), Eq. 1",
+         .group = G::FrictionLaw, .lower = 0, .lowerOpen = true, .fit = {0.05, 20.0, true}, .sliderMin = 0.05,
+         .sliderMax = 10.0, .decimals = 3},
+        {.key = "vc", .label = "v_c", .unit = "m/s", .quantity = "a velocity", .doc = "Characteristic velocity 1/C2, Eq. 2",
+         .group = G::FrictionLaw, .lower = 0, .lowerOpen = true, .fit = {1e-4, 10.0, true}, .displayUnit = "m/s",
+         .sliderMin = 0.001, .sliderMax = 1.0, .logSlider = true, .decimals = 4},
+        {.key = "epsT", .label = "ε_T", .unit = "N/m", .quantity = "a stiffness", .doc = "Tangential penalty stiffness, Eq. 4",
+         .group = G::FrictionLaw, .lower = 0, .lowerOpen = true, .fit = {1e2, 1e10, true}, .displayUnit = "N/m",
+         .sliderMin = 1.0e3, .sliderMax = 1.0e8, .logSlider = true, .decimals = 0},
+    };
+}
+
+double* RateStateLaw::field(Params& p, std::string_view key) {
+    if (key == "mu") return &p.mu;
+    if (key == "eta") return &p.eta_s_per_m;
+    if (key == "Dc") return &p.Dc_m;
+    if (key == "C1") return &p.C1;
+    if (key == "r") return &p.r;
+    if (key == "vc") return &p.vc_mps;
+    if (key == "epsT") return &p.epsT_N_per_m;
+    return nullptr;
+}
+
+ParamIssues RateStateParams::validate() const {
+    ParamIssues out;
+    for (const char* k : {"mu", "eta", "Dc", "C1", "r", "vc", "epsT"})
+        checkParam(k, *RateStateLaw::field(const_cast<RateStateParams&>(*this), k), out);
+    return out;
+}
+
 double RateStateLaw::K1(double alpha) const { return params.C1 * (std::exp(alpha / params.r) - 1.0); }
 
 double RateStateLaw::slipFunction(const LawState& s, double tN) const {

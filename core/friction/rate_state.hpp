@@ -7,12 +7,37 @@
 
 #include <limits>
 
-#include "../params.hpp"
+#include <string_view>
+#include <vector>
+
+#include "../param_table.hpp"
 #include "law_state.hpp"
 
 namespace stickslip {
 
+// Elasto-viscoplastic rate- and state-dependent law (Eqs. 1–4).
+struct RateStateParams {
+    double mu = 0.25;                 // μ, static coefficient of friction [-]
+    double eta_s_per_m = 0.6;         // η, fluidity (viscosity) [s/m]
+    double Dc_m = 20.0e-6;            // D_c, critical slip distance [m]
+    double C1 = 0.25;                 // C1, amplitude of K1(α) [-]
+    double r = 1.0;                   // r, scale of α in K1(α) = C1 (exp(α/r) − 1) [-]
+    double vc_mps = 0.1;              // v_c = 1/C2, characteristic velocity [m/s]
+    double epsT_N_per_m = 1.0e6;      // ε_T, tangential penalty stiffness [N/m]
+    ParamIssues validate() const;
+    double C2() const { return 1.0 / vc_mps; }  // [s/m]
+};
+
 struct RateStateLaw {
+    using Params = RateStateParams;
+    static constexpr const char* kKey = "rate-state";     // --model, run files, sessions
+    static constexpr const char* kLabel = "rate-state";   // legends
+    static constexpr bool kViscous = true;                // slip rate follows the overstress (Eq. 3)
+    // The law's rows of the parameter table (param_table.hpp), with `field` left empty: the
+    // registry writes them through field().
+    static std::vector<ParamDef> paramRows();
+    static double* field(Params& p, std::string_view key);
+
     RateStateParams params;
 
     // Backward-Euler return mapping over one step (derivation in rate_state.cpp).

@@ -532,29 +532,12 @@ std::vector<double> logGrid(double lower, double upper, int points) {
 }
 
 bool defaultParameter(const std::string& name, SetupKind setup, FitParameter& out) {
-    const bool pres = setup == SetupKind::Prescribed;
-    // In the prescribed set-up t_N is a reference load (e.g. a band tension), so the
-    // coefficients μ, C1 and η are "per unit reference load" and may be far above 1.
-    struct Row { const char* n; double v, lo, hi; ParamScale s; };
-    const Row rows[] = {
-        {"mu", 0.25, pres ? 1e-3 : 0.01, pres ? 1e3 : 2.0, pres ? ParamScale::Log : ParamScale::Linear},
-        {"C1", 0.25, pres ? 1e-4 : 0.0, pres ? 1e3 : 2.0, pres ? ParamScale::Log : ParamScale::Linear},
-        {"eta", 0.6, 1e-4, pres ? 1e4 : 50.0, ParamScale::Log},
-        {"Dc", 20e-6, 1e-8, 1e-2, ParamScale::Log},
-        {"vc", 0.1, 1e-4, 10.0, ParamScale::Log},
-        {"epsT", 1e6, 1e2, 1e10, ParamScale::Log},
-        {"r", 1.0, 0.05, 20.0, ParamScale::Log},
-        {"k", 8446.0, 1.0, 1e7, ParamScale::Log},
-        {"m", 0.53, 1e-3, 100.0, ParamScale::Log},
-        {"c", 0.669, 1e-6, 1e4, ParamScale::Log},
-        {"tN", 6.2, 1e-3, 1e5, ParamScale::Log},
-    };
-    for (const Row& r : rows)
-        if (name == r.n) {
-            out = FitParameter{r.n, r.v, r.lo, r.hi, true, r.s};
-            return true;
-        }
-    return false;
+    // The parameter table's fit range (the prescribed one where the row has it) and default.
+    const ParamDef* d = findParam(name);
+    if (!d || !d->fit.valid()) return false;
+    const FitRange& r = setup == SetupKind::Prescribed && d->fitPrescribed.valid() ? d->fitPrescribed : d->fit;
+    out = FitParameter{d->key, paramDefault(name), r.lower, r.upper, true, r.log ? ParamScale::Log : ParamScale::Linear};
+    return true;
 }
 
 }  // namespace stickslip::identify

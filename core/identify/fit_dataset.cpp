@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "../friction/friction_law.hpp"
 #include "curve_coordinates.hpp"
 #include "fit.hpp"
 #include "identify.hpp"
@@ -23,9 +24,10 @@ using io::Signal;
 
 namespace {
 
+// False only for a friction-law key the law does not have (the rig's keys belong to every law).
 bool lawHas(LawKind law, const std::string& name) {
-    if (law == LawKind::RateState) return true;
-    return name != "eta" && name != "Dc" && name != "vc" && name != "C1" && name != "r";
+    const ParamDef* d = findParam(name);
+    return !d || d->group != ParamGroup::FrictionLaw || lawHasParam(law, name);
 }
 
 double rmsOf(const std::vector<double>& v, const std::vector<size_t>& idx) {
@@ -141,7 +143,7 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         FitParameter fp;
         if (name == "zeta") fp = FitParameter{"zeta", 0.005, 1e-5, 1.0, true, ParamScale::Log};
         else if (!defaultParameter(name, st.setup, fp)) {
-            out.message = "unknown free parameter '" + name + "' (known: mu C1 eta Dc vc epsT r m zeta)";
+            out.message = "unknown free parameter '" + name + "' (known: " + fitParamKeys() + " zeta)";
             return out;
         }
         prob.parameters.push_back(fp);

@@ -8,6 +8,14 @@
 namespace stickslip::identify {
 
 namespace {
+
+// A law's key as a JSON name: "rate-state" → "rate_state".
+std::string jsonName(LawKind law) {
+    std::string s = toString(law);
+    for (char& c : s)
+        if (c == '-') c = '_';
+    return s;
+}
 nlohmann::json numOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 }  // namespace
 
@@ -90,10 +98,8 @@ nlohmann::json fitReportJson(const std::vector<const DatasetFit*>& fits) {
         for (size_t i = 0; i < a.runs.size() && i < b.runs.size(); ++i)
             cmp.push_back({{"file", a.runs[i].file},
                            {"role", a.runs[i].role},
-                           {"nrmse_" + std::string(a.model.law == LawKind::RateState ? "rate_state" : "coulomb"),
-                            numOrNull(a.runs[i].nrmse)},
-                           {"nrmse_" + std::string(b.model.law == LawKind::RateState ? "rate_state" : "coulomb"),
-                            numOrNull(b.runs[i].nrmse)}});
+                           {"nrmse_" + jsonName(a.model.law), numOrNull(a.runs[i].nrmse)},
+                           {"nrmse_" + jsonName(b.model.law), numOrNull(b.runs[i].nrmse)}});
         rep["comparison"] = cmp;
     }
     return rep;

@@ -31,7 +31,8 @@ std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const 
         ps.push_back(p);
     }
     if (cx.anyDynamics && cx.opt->fitMass) {
-        FitParameter p{"m", 0.53, 0.05, 5.0, true, ParamScale::Log};
+        FitParameter p;
+        defaultParameter("m", SetupKind::Dynamics, p);
         auto it = start.find("m");
         if (it != start.end()) p.value = std::clamp(it->second, p.lower, p.upper);
         ps.push_back(p);

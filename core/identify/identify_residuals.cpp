@@ -14,24 +14,12 @@
 namespace stickslip::identify::detail {
 
 void applyLaw(RateStateParams& p, const std::string& name, double v) {
-    if (name == "mu") p.mu = v;
-    else if (name == "C1") p.C1 = v;
-    else if (name == "eta") p.eta_s_per_m = v;
-    else if (name == "Dc") p.Dc_m = v;
-    else if (name == "vc") p.vc_mps = v;
-    else if (name == "epsT") p.epsT_N_per_m = v;
-    else if (name == "r") p.r = v;
+    if (double* f = RateStateLaw::field(p, name)) *f = v;
 }
 
 double lawValue(const RateStateParams& p, const std::string& name) {
-    if (name == "mu") return p.mu;
-    if (name == "C1") return p.C1;
-    if (name == "eta") return p.eta_s_per_m;
-    if (name == "Dc") return p.Dc_m;
-    if (name == "vc") return p.vc_mps;
-    if (name == "epsT") return p.epsT_N_per_m;
-    if (name == "r") return p.r;
-    return kNaN;
+    const double* f = RateStateLaw::field(const_cast<RateStateParams&>(p), name);
+    return f ? *f : kNaN;
 }
 
 // Model from a flat map of values ("mu", "m", "frictional_lag.tau_s", …).

@@ -1,3 +1,4 @@
+#include "../friction/friction_law.hpp"
 #include "pipeline.hpp"
 
 #include <cstdlib>
@@ -87,7 +88,7 @@ bool fitSettings(const FitRequest& o, SetupKind setup, DatasetFitSettings& st, P
         FitParameter fp;
         if (n != "zeta" && !defaultParameter(n, setup, fp))
             return fail(status, PipelineCode::BadArguments,
-                        "--free " + n + ": unknown parameter (known: mu C1 eta Dc vc epsT r m zeta)");
+                        "--free " + n + ": unknown parameter (known: " + fitParamKeys() + " zeta)");
     }
     return true;
 }
@@ -168,11 +169,13 @@ bool runFitRequest(const FitRequest& o, FitOutcome& out, PipelineStatus& status)
     preJson["runs"] = perRun;
     DatasetFitSettings& st = out.settings;
     if (!fitSettings(o, out.setup, st, status)) return false;
-    std::vector<LawKind> laws;
-    if (o.model == "rate-state") laws = {LawKind::RateState};
-    else if (o.model == "coulomb") laws = {LawKind::Coulomb};
-    else if (o.model == "both") laws = {LawKind::RateState, LawKind::Coulomb};
-    else return fail(status, PipelineCode::BadArguments, "--model " + o.model + ": must be rate-state, coulomb or both");
+    std::vector<LawKind> laws(1, LawKind::RateState);
+    if (o.model == "both") laws = {LawKind::RateState, LawKind::Coulomb};
+    else if (!parseLawKind(o.model, laws[0])) {
+        std::string names;
+        for (const LawInfo& i : lawRegistry()) names += std::string(i.key) + ", ";
+        return fail(status, PipelineCode::BadArguments, "--model " + o.model + ": must be " + names + "or both");
+    }
 
     for (LawKind law : laws) {
         st.law = law;

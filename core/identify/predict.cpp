@@ -40,7 +40,7 @@ bool runParams(const CleanRun& run, const ModelSpec& spec, SimParams& p, std::st
         if (!setParam(p, name, value, error)) return false;
     }
     if (zeta >= 0 && !haveC) p.rig.damping_Ns_per_m = dampingFromRatio(zeta, p.rig.stiffness_N_per_m, p.rig.mass_kg);
-    if (spec.tieC1ToMu && !spec.values.count("C1")) p.rateState.C1 = p.rateState.mu;
+    if (spec.tieC1ToMu && !spec.values.count("C1")) p.lawParams<RateStateParams>().C1 = p.lawParams<RateStateParams>().mu;
     return true;
 }
 
@@ -193,7 +193,7 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
         // it relaxes within a slip of D_c. Right when the segment starts in slip
         // (slipStartFraction > 0); while stuck the true α is frozen at its end-of-slip value.
         const double V = r.has(Signal::RelVel) ? r[Signal::RelVel][s0] : 0.0;
-        st.law.alpha = std::holds_alternative<RateStateLaw>(law) ? std::get<RateStateLaw>(law).steadyStateAlpha(V) : 0.0;
+        st.law.alpha = steadyStateAlpha(law, V);
         st.a = (st.law.force_N - rig.stiffness_N_per_m * st.x - rig.damping_Ns_per_m * st.v) / rig.mass_kg;
         eF.assign(segLen + 1, 0.0);
         eX.assign(segLen + 1, 0.0);

@@ -103,7 +103,7 @@ public:
         cache_.resize(kLevels);  // the only allocation: before the time loop
         for (int k = 0; k < kLevels; ++k) hTable_[static_cast<size_t>(k)] = hMax_ * std::exp2(-0.25 * k);
         harmonic_ = m.stage.isHarmonic();
-        viscous_ = std::is_same_v<Law, RateStateLaw>;
+        if constexpr (requires { Law::kViscous; }) viscous_ = Law::kViscous;
         omega_ = harmonic_ ? m.stage.omega() : 0.0;
     }
     AdaptiveReport run(DynState& s, double tEnd, const AdaptiveObserver& obs, const RunControl& ctl);

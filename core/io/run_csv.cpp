@@ -50,12 +50,10 @@ std::string runCsvHead(const SimParams& p, const RunResult& r, const std::vector
             if (c == '\n' || c == '\r') c = ' ';
         s += "# message = " + msg + "\n";
     }
+    // Every key; a shared law key (μ, ε_T, D_c) reads the selected law's own value.
     for (const std::string& key : paramKeys()) {
         double v = 0;
         if (!getParam(p, key, v)) continue;
-        // The Coulomb law keeps its own μ and ε_T; report the ones the run used.
-        if (p.law == LawKind::Coulomb && key == "mu") v = p.coulomb.mu;
-        if (p.law == LawKind::Coulomb && key == "epsT") v = p.coulomb.epsT_N_per_m;
         std::string unit;
         paramUnit(key, unit);
         // Shortest text that reads back to the same double.

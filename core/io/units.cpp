@@ -1,5 +1,7 @@
 #include "units.hpp"
 
+#include "../param_table.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -219,29 +221,26 @@ struct KeyUnit {
     Dimension dim;
     const char* quantity;
 };
-const KeyUnit kKeyUnits[] = {
-    {"A", "m", {1, 0, 0}, "a length"},
-    {"f", "Hz", {0, 0, -1}, "a frequency"},
-    {"phase", "rad", {0, 0, 0}, "an angle"},
-    {"tN", "N", {1, 1, -2}, "a force"},
-    {"k", "N/m", {0, 1, -2}, "a stiffness"},
-    {"m", "kg", {0, 1, 0}, "a mass"},
-    {"c", "N s/m", {0, 1, -1}, "a damping coefficient"},
-    {"mu", "", {0, 0, 0}, "dimensionless"},
-    {"eta", "s/m", {-1, 0, 1}, "a fluidity"},
-    {"Dc", "m", {1, 0, 0}, "a length"},
-    {"C1", "", {0, 0, 0}, "dimensionless"},
-    {"r", "", {0, 0, 0}, "dimensionless"},
-    {"vc", "m/s", {1, 0, -1}, "a velocity"},
-    {"epsT", "N/m", {0, 1, -2}, "a stiffness"},
-    {"dt", "s", {0, 0, 1}, "a time"},
-    {"output_every", "s", {0, 0, 1}, "a time"},
-    {"cycles", "", {0, 0, 0}, "dimensionless"},
-    {"transient", "", {0, 0, 0}, "dimensionless"},
-};
+
+// The parameter table's keys with the dimension of their SI unit.
+const std::vector<KeyUnit>& keyUnits() {
+    static const std::vector<KeyUnit> units = [] {
+        std::vector<KeyUnit> out;
+        for (const ParamDef& d : paramTable()) {
+            std::vector<Term> terms;
+            std::string why;
+            double factor = 1.0;
+            Dimension dim;
+            if (*d.unit && parseUnit(d.unit, terms, why)) combine(terms, false, factor, dim);
+            out.push_back({d.key, d.unit, dim, d.quantity});
+        }
+        return out;
+    }();
+    return units;
+}
 
 const char* describe(const Dimension& d) {
-    for (const KeyUnit& k : kKeyUnits)
+    for (const KeyUnit& k : keyUnits())
         if (k.dim == d) return k.quantity;
     if (d == Dimension{0, 0, -1}) return "a frequency";
     return nullptr;
@@ -325,7 +324,7 @@ bool parseQuantity(const std::string& textIn, Quantity& out, std::string* error,
 }
 
 bool paramUnit(const std::string& key, std::string& unit) {
-    for (const KeyUnit& k : kKeyUnits) {
+    for (const KeyUnit& k : keyUnits()) {
         if (key == k.key) {
             unit = k.unit;
             return true;
@@ -335,7 +334,7 @@ bool paramUnit(const std::string& key, std::string& unit) {
 }
 
 bool paramDimension(const std::string& key, Dimension& dim) {
-    for (const KeyUnit& k : kKeyUnits) {
+    for (const KeyUnit& k : keyUnits()) {
         if (key == k.key) {
             dim = k.dim;
             return true;
@@ -346,7 +345,7 @@ bool paramDimension(const std::string& key, Dimension& dim) {
 
 bool parseParamValue(const std::string& key, const std::string& text, double& valueSI, std::string* error) {
     const KeyUnit* ku = nullptr;
-    for (const KeyUnit& k : kKeyUnits)
+    for (const KeyUnit& k : keyUnits())
         if (key == k.key) ku = &k;
     if (!ku) {
         if (error) *error = "unknown parameter '" + key + "'";

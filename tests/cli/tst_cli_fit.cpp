@@ -89,11 +89,12 @@ std::string baseName(const std::string& path) {
     return s == std::string::npos ? path : path.substr(s + 1);
 }
 
-void checkReport(const json& rep, const QString& residualsPath, bool dynamics, const std::vector<std::string>& freeNames) {
+void checkReport(const json& rep, const QString& residualsPath, bool dynamics, const std::vector<std::string>& freeNames,
+                 const std::string& model = "rate-state") {
     for (const char* key : {"model", "parameters", "correlation", "runs", "fit_nrmse", "validation_nrmse", "solver",
                             "preprocessing", "identifiable", "tau_int"})
         QVERIFY2(rep.contains(key), key);
-    QCOMPARE(rep["model"].get<std::string>(), std::string("rate-state"));
+    QCOMPARE(rep["model"].get<std::string>(), model);
     QCOMPARE(rep["setup"].get<std::string>(), std::string(dynamics ? "dynamics" : "prescribed"));
     for (const std::string& n : freeNames) {
         QVERIFY2(rep["parameters"].contains(n), n.c_str());

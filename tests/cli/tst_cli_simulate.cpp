@@ -77,7 +77,7 @@ private slots:
         SimParams p = pr.params;
         p.cycles = 2;
         p.drive.amplitude_m = 0.0008;
-        p.rateState.eta_s_per_m = 0.5;
+        p.lawParams<RateStateParams>().eta_s_per_m = 0.5;
         const RunResult ref = simulate(p);
         QVERIFY2(ref.ok(), ref.message.c_str());
         QCOMPARE(t.rows(), ref.samples.size());
@@ -296,7 +296,7 @@ private slots:
         QVERIFY(findPreset("default", pr));
         SimParams p = pr.params;
         p.setup = SetupKind::Prescribed;
-        p.rateState.eta_s_per_m = 0.6;
+        p.lawParams<RateStateParams>().eta_s_per_m = 0.6;
         p.rig.normalForce_N = 5.0;
         const RunResult ref = simulate(p, {}, &h);
         QVERIFY2(ref.ok(), ref.message.c_str());
@@ -309,7 +309,7 @@ private slots:
         // After 1 s at V = 0.05 m/s (2500 D_c of slip) the block slides steadily: Eq. 5,
         // |F|/t_N = μ + K1(−C2 V) + η V with K1(α) = C1 (exp(α/r) − 1).
         const double V = 0.05;
-        const auto& rs = p.rateState;
+        const auto& rs = p.lawParams<RateStateParams>();
         const double eq5 = rs.mu + rs.C1 * (std::exp(-rs.C2() * V / rs.r) - 1.0) + rs.eta_s_per_m * V;
         QVERIFY2(std::abs(std::abs(t.columns[ir].back()) - eq5) <= 1e-3 * eq5,
                  qPrintable(QString("ratio %1, Eq. 5 %2").arg(t.columns[ir].back()).arg(eq5)));

@@ -21,10 +21,10 @@ inline SimParams fig20Params() {
     p.rig.stiffness_N_per_m = 8446.0;
     p.rig.mass_kg = 0.53;
     p.rig.damping_Ns_per_m = dampingFromRatio(0.005, p.rig.stiffness_N_per_m, p.rig.mass_kg);
-    p.rateState = RateStateParams{};
-    p.rateState.epsT_N_per_m = 1.0e6;
-    p.coulomb = CoulombParams{};
-    p.coulomb.epsT_N_per_m = 1.0e6;
+    p.lawParams<RateStateParams>() = RateStateParams{};
+    p.lawParams<RateStateParams>().epsT_N_per_m = 1.0e6;
+    p.lawParams<CoulombParams>() = CoulombParams{};
+    p.lawParams<CoulombParams>().epsT_N_per_m = 1.0e6;
     p.integration.dt_s = p.drive.period() / 10000.0;
     p.integration.outputInterval_s = p.drive.period() / 100.0;
     p.cycles = 20;

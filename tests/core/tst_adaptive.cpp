@@ -135,7 +135,7 @@ private slots:
         QFETCH(double, smallestTol);
         SimParams p = lawParams(coulomb, 20);
         p.drive.amplitude_m = amplitude;
-        p.rateState.epsT_N_per_m = p.coulomb.epsT_N_per_m = epsT;
+        p.lawParams<RateStateParams>().epsT_N_per_m = p.lawParams<CoulombParams>().epsT_N_per_m = epsT;
         const std::vector<double> ref = referenceTrace(p);
         double prev = INFINITY;
         for (double tol : {1e-2, 1e-3, 1e-4, 1e-5}) {
@@ -241,7 +241,7 @@ private slots:
         p.rig.damping_Ns_per_m = 0.0;
         const double As = stickThresholdAmplitude(p);
         p.drive.amplitude_m = fraction * As;
-        const double w = p.drive.omega(), eps = p.coulomb.epsT_N_per_m;
+        const double w = p.drive.omega(), eps = p.lawParams<CoulombParams>().epsT_N_per_m;
         // Stuck forced response x = X sin ωt, X = ε_T A / (k + ε_T − m ω²) (c = 0).
         const double X = eps * p.drive.amplitude_m / (p.rig.stiffness_N_per_m + eps - p.rig.mass_kg * w * w);
         const DynamicsModel m = DynamicsModel::fromParams(p);
@@ -256,7 +256,7 @@ private slots:
             maxF = std::max(maxF, std::abs(b.law.force_N));
         });
         QVERIFY2(rep.status == RunStatus::Ok, rep.message.c_str());
-        const double muTN = p.coulomb.mu * p.rig.normalForce_N;
+        const double muTN = p.lawParams<CoulombParams>().mu * p.rig.normalForce_N;
         qInfo("A = %.3f A_s: %ld of %ld steps slipped, max|F| = %.6g N (mu tN %.6g)", fraction, slipSteps, rep.accepted, maxF, muTN);
         if (expectStick) {
             QCOMPARE(slipSteps, 0L);
@@ -289,7 +289,7 @@ private slots:
         QFETCH(double, epsT);
         SimParams p = lawParams(coulomb, 10);
         p.drive.amplitude_m = amplitude;
-        p.rateState.epsT_N_per_m = p.coulomb.epsT_N_per_m = epsT;
+        p.lawParams<RateStateParams>().epsT_N_per_m = p.lawParams<CoulombParams>().epsT_N_per_m = epsT;
         const DynamicsModel m = DynamicsModel::fromParams(p);
         const double T = p.drive.period(), k = p.rig.stiffness_N_per_m, mass = p.rig.mass_kg, c = p.rig.damping_Ns_per_m;
         AdaptiveOptions o;

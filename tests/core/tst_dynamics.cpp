@@ -31,15 +31,15 @@ struct StuckResponse {
     double Famp;  // force amplitude [N]
 };
 StuckResponse stuckResponse(const SimParams& p) {
-    const double w = p.drive.omega(), k = p.rig.stiffness_N_per_m, m = p.rig.mass_kg, eps = p.coulomb.epsT_N_per_m;
+    const double w = p.drive.omega(), k = p.rig.stiffness_N_per_m, m = p.rig.mass_kg, eps = p.lawParams<CoulombParams>().epsT_N_per_m;
     const double A = p.drive.amplitude_m;
     const double X = eps * A / (k + eps - m * w * w);
     return {X, std::abs(eps * (A - X))};
 }
 // Stage amplitude at which the stuck force amplitude reaches μ t_N.
 double stickThreshold(const SimParams& p) {
-    const double w = p.drive.omega(), k = p.rig.stiffness_N_per_m, m = p.rig.mass_kg, eps = p.coulomb.epsT_N_per_m;
-    return p.coulomb.mu * p.rig.normalForce_N * std::abs(k + eps - m * w * w) / (eps * std::abs(k - m * w * w));
+    const double w = p.drive.omega(), k = p.rig.stiffness_N_per_m, m = p.rig.mass_kg, eps = p.lawParams<CoulombParams>().epsT_N_per_m;
+    return p.lawParams<CoulombParams>().mu * p.rig.normalForce_N * std::abs(k + eps - m * w * w) / (eps * std::abs(k - m * w * w));
 }
 
 }  // namespace
@@ -75,7 +75,7 @@ private slots:
         p.rig.stiffness_N_per_m = k;
         p.rig.damping_Ns_per_m = 0.0;
         const double w = p.drive.omega();
-        const double muTN = p.coulomb.mu * p.rig.normalForce_N;
+        const double muTN = p.lawParams<CoulombParams>().mu * p.rig.normalForce_N;
         // The criterion A |k − mω²| < μ t_N is this threshold for ε_T ≫ |k − mω²|; ours
         // carries the series factor (k + ε_T − mω²)/ε_T, within 1e-2 of 1 here.
         const double Ac = stickThreshold(p);
@@ -94,7 +94,7 @@ private slots:
             maxF = std::max(maxF, std::abs(st.law.force_N));
             maxErrX = std::max(maxErrX, std::abs(st.x - ref.X * std::sin(w * st.t)));
             // Pre-slip: the force is the ε_T spring stretched by the slip u − x.
-            if (st.stuck) maxErrF = std::max(maxErrF, std::abs(st.law.force_N - p.coulomb.epsT_N_per_m * (st.u - st.x)));
+            if (st.stuck) maxErrF = std::max(maxErrF, std::abs(st.law.force_N - p.lawParams<CoulombParams>().epsT_N_per_m * (st.u - st.x)));
         };
         const StepReport rep = advance(model, s, steps, obs);
         QVERIFY2(rep.status == RunStatus::Ok, rep.message.c_str());
@@ -266,7 +266,7 @@ private slots:
         SimParams p = fig20Params();
         if (what == "A") p.drive.amplitude_m = 1e300;  // valid (finite, ≥ 0), but F = ε_T Δg overflows
         DynamicsModel m = DynamicsModel::fromParams(p);
-        RateStateParams rp = p.rateState;
+        RateStateParams rp = p.lawParams<RateStateParams>();
         if (what == "m") m.rig.mass_kg = std::nan("");
         if (what == "tN") m.rig.normalForce_N = std::nan("");
         if (what == "epsT") rp.epsT_N_per_m = std::numeric_limits<double>::infinity();

@@ -234,7 +234,7 @@ private slots:
         DynamicsModel dm = DynamicsModel::fromParams(p);
         DynState s = dm.initialState(0.0);
         ExtendedModel m = baseModel();
-        m.law = p.rateState;
+        m.law = p.lawParams<RateStateParams>();
         m.rig = p.rig;
         const long steps = 10000;
         const auto tr = simulateExtendedDynamics(m, {p.rig.normalForce_N, 0}, dm.stage, 0.0, 1e-4, steps, 100);

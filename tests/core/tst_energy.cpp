@@ -99,7 +99,7 @@ private slots:
         SimParams p = fig20Params();
         p.law = coulomb ? LawKind::Coulomb : LawKind::RateState;
         p.drive.amplitude_m = amplitude;
-        p.rateState.epsT_N_per_m = p.coulomb.epsT_N_per_m = epsT;
+        p.lawParams<RateStateParams>().epsT_N_per_m = p.lawParams<CoulombParams>().epsT_N_per_m = epsT;
         p.rig.damping_Ns_per_m = dampingFromRatio(zeta, p.rig.stiffness_N_per_m, p.rig.mass_kg);
         const EnergyLedger e = balance(p, 5, 10);
         const double scale = std::max({std::abs(e.stageWork), e.slipDissipation, e.dampingDissipation,

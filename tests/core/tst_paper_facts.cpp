@@ -155,7 +155,7 @@ private slots:
     // η = 0.6 s/m is periodic there (LLE < 0, K ≈ 0).
     void etaPointTwoChaoticAtThreePointFiveMillimetres() {
         SimParams p = preset("fig23");  // ε_T = 1e6, η = 0.2
-        QCOMPARE(p.rateState.epsT_N_per_m, 1e6);
+        QCOMPARE(p.lawParams<RateStateParams>().epsT_N_per_m, 1e6);
         const SweepResult chaotic = runAt(p, {3.5e-3}, 60, 100, true);
         setParam(p, "eta", 0.6);
         const SweepResult regular = runAt(p, {3.5e-3}, 60, 100, true);

@@ -66,13 +66,13 @@ SimParams drawParams(Draw& d) {
     p.rig.damping_Ns_per_m = d.chance(0.1) ? 0.0 : d.logUniform(1e-4, 20.0);
     const double mu = d.uniform(0.0, 1.0);
     const double epsT = d.logUniform(1e1, 1e12);
-    p.rateState.mu = p.coulomb.mu = mu;
-    p.rateState.epsT_N_per_m = p.coulomb.epsT_N_per_m = epsT;
-    p.rateState.eta_s_per_m = d.logUniform(1e-6, 1e3);
-    p.rateState.Dc_m = d.logUniform(1e-10, 1e-1);
-    p.rateState.C1 = d.uniform(0.0, 3.0);
-    p.rateState.r = d.logUniform(0.01, 100.0);
-    p.rateState.vc_mps = d.logUniform(1e-5, 100.0);
+    p.lawParams<RateStateParams>().mu = p.lawParams<CoulombParams>().mu = mu;
+    p.lawParams<RateStateParams>().epsT_N_per_m = p.lawParams<CoulombParams>().epsT_N_per_m = epsT;
+    p.lawParams<RateStateParams>().eta_s_per_m = d.logUniform(1e-6, 1e3);
+    p.lawParams<RateStateParams>().Dc_m = d.logUniform(1e-10, 1e-1);
+    p.lawParams<RateStateParams>().C1 = d.uniform(0.0, 3.0);
+    p.lawParams<RateStateParams>().r = d.logUniform(0.01, 100.0);
+    p.lawParams<RateStateParams>().vc_mps = d.logUniform(1e-5, 100.0);
     p.cycles = d.uniform(0.3, 3.0);
     p.transientCycles = d.chance(0.7) ? 0.0 : d.uniform(0.0, 1.0);
     p.integration.outputInterval_s = d.chance(0.05) ? d.logUniform(1e-12, 1e6) : d.logUniform(1e-5, 0.1);
@@ -99,8 +99,8 @@ std::string describe(const SimParams& p) {
     for (const std::string& k : paramKeys()) {
         double v = 0;
         getParam(p, k, v);
-        if (p.law == LawKind::Coulomb && k == "mu") v = p.coulomb.mu;
-        if (p.law == LawKind::Coulomb && k == "epsT") v = p.coulomb.epsT_N_per_m;
+        if (p.law == LawKind::Coulomb && k == "mu") v = p.lawParams<CoulombParams>().mu;
+        if (p.law == LawKind::Coulomb && k == "epsT") v = p.lawParams<CoulombParams>().epsT_N_per_m;
         s << " --set " << k << "=" << v;
     }
     return s.str();

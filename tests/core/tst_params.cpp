@@ -8,7 +8,10 @@
 #include <limits>
 #include <set>
 
+#include "core/friction/friction_law.hpp"
+#include "core/identify/fit.hpp"
 #include "core/integrate/simulate.hpp"
+#include "core/io/units.hpp"
 #include "core/params.hpp"
 #include "core/presets.hpp"
 #include "physics_helpers.hpp"
@@ -86,14 +89,14 @@ private slots:
         QCOMPARE(p.rig.stiffness_N_per_m, 8446.0);
         QCOMPARE(p.rig.mass_kg, 0.53);
         QCOMPARE(p.drive.frequency_Hz, 3.0);
-        QCOMPARE(p.rateState.mu, 0.25);
-        QCOMPARE(p.rateState.C1, 0.25);
-        QCOMPARE(p.rateState.r, 1.0);
-        QCOMPARE(p.rateState.eta_s_per_m, 0.6);
-        QCOMPARE(p.rateState.Dc_m, 20e-6);
-        QCOMPARE(p.rateState.vc_mps, 0.1);
-        QCOMPARE(p.rateState.C2(), 10.0);
-        QCOMPARE(p.coulomb.mu, 0.25);
+        QCOMPARE(p.lawParams<RateStateParams>().mu, 0.25);
+        QCOMPARE(p.lawParams<RateStateParams>().C1, 0.25);
+        QCOMPARE(p.lawParams<RateStateParams>().r, 1.0);
+        QCOMPARE(p.lawParams<RateStateParams>().eta_s_per_m, 0.6);
+        QCOMPARE(p.lawParams<RateStateParams>().Dc_m, 20e-6);
+        QCOMPARE(p.lawParams<RateStateParams>().vc_mps, 0.1);
+        QCOMPARE(p.lawParams<RateStateParams>().C2(), 10.0);
+        QCOMPARE(p.lawParams<CoulombParams>().mu, 0.25);
         // 0.5 % of critical damping.
         QVERIFY(std::abs(p.rig.dampingRatio() - 0.005) < 1e-3 * 0.005);
         QVERIFY2(p.validate().empty(), formatIssues(p.validate()).c_str());
@@ -165,15 +168,15 @@ private slots:
             {"cycles", 0}, {"transient", -1}};
         QCOMPARE(bad.size(), paramKeys().size());
         for (const auto& [key, v] : bad) {
-            for (LawKind law : {LawKind::RateState, LawKind::Coulomb}) {
+            for (LawKind law : allLaws()) {
                 SimParams p = fig20Params();
                 p.law = law;
                 QVERIFY(setParam(p, key, v));
                 const std::string k = key;
-                const bool lawOnly = (k == "eta" || k == "Dc" || k == "C1" || k == "r" || k == "vc");
+                const bool otherLaws = findParam(k)->group == ParamGroup::FrictionLaw && !lawHasParam(law, k);
                 const ParamIssues issues = p.validate();
-                if (law == LawKind::Coulomb && lawOnly) {
-                    QVERIFY(issues.empty());  // rate-state fields do not concern the Coulomb model
+                if (otherLaws) {
+                    QVERIFY(issues.empty());  // another law's fields do not concern this model
                     continue;
                 }
                 QVERIFY2(issues.size() == 1, qPrintable(QString("%1: %2").arg(key).arg(QString::fromStdString(formatIssues(issues)))));
@@ -212,8 +215,8 @@ private slots:
             QCOMPARE(back, x);
             x += 0.5;
         }
-        QCOMPARE(p.coulomb.mu, p.rateState.mu);
-        QCOMPARE(p.coulomb.epsT_N_per_m, p.rateState.epsT_N_per_m);
+        QCOMPARE(p.lawParams<CoulombParams>().mu, p.lawParams<RateStateParams>().mu);
+        QCOMPARE(p.lawParams<CoulombParams>().epsT_N_per_m, p.lawParams<RateStateParams>().epsT_N_per_m);
         std::string err;
         QVERIFY(!setParam(p, "speed", 1.0, &err));
         QVERIFY2(contains(err, "speed") && contains(err, "epsT") && contains(err, "tN"), err.c_str());
@@ -222,6 +225,50 @@ private slots:
     }
 
     // Derived quantities.
+    // The parameter table (core/param_table.hpp): one row per key, each either a field of its
+    // own or a key of at least one law; every law has μ and ε_T (the analyses scale by them);
+    // defaults are the struct initialisers; the fit's ranges and the units come from the rows.
+    void parameterTable() {
+        std::set<std::string> seen;
+        for (const ParamDef& d : paramTable()) {
+            QVERIFY2(seen.insert(d.key).second, d.key);
+            bool inLaw = false;
+            for (LawKind law : allLaws()) inLaw = inLaw || lawHasParam(law, d.key);
+            QVERIFY2((d.field != nullptr) != inLaw, d.key);
+            QVERIFY2(*d.label && *d.doc && *d.quantity, d.key);
+            QVERIFY2(d.sliderMax > d.sliderMin && d.displayScale > 0, d.key);
+            std::string unit;
+            QVERIFY(io::paramUnit(d.key, unit));
+            QCOMPARE(unit, std::string(d.unit));
+        }
+        for (LawKind law : allLaws()) {
+            QVERIFY(lawHasParam(law, "mu") && lawHasParam(law, "epsT"));
+            for (const std::string& k : lawInfo(law).keys) QVERIFY2(findParam(k), k.c_str());
+        }
+        const SimParams p;
+        QCOMPARE(paramDefault("mu"), p.lawParams<RateStateParams>().mu);
+        QCOMPARE(paramDefault("Dc"), p.lawParams<RateStateParams>().Dc_m);
+        QCOMPARE(paramDefault("m"), p.rig.mass_kg);
+        QVERIFY(std::isnan(paramDefault("nope")));
+        identify::FitParameter fp;
+        QVERIFY(identify::defaultParameter("m", SetupKind::Dynamics, fp));
+        QCOMPARE(fp.lower, findParam("m")->fit.lower);
+        QCOMPARE(fp.upper, findParam("m")->fit.upper);
+        QCOMPARE(fp.value, p.rig.mass_kg);
+        QVERIFY(identify::defaultParameter("mu", SetupKind::Prescribed, fp));
+        QCOMPARE(fp.upper, findParam("mu")->fitPrescribed.upper);
+        QVERIFY(fp.scale == identify::ParamScale::Log);
+        QVERIFY(!identify::defaultParameter("dt", SetupKind::Dynamics, fp));  // no fit range
+        // A law key written once sets every law having it; getParam reads the selected law's.
+        SimParams q;
+        q.lawParams<CoulombParams>().mu = 0.4;
+        q.law = LawKind::Coulomb;
+        double v = 0;
+        QVERIFY(getParam(q, "mu", v));
+        QCOMPARE(v, 0.4);
+        QCOMPARE(lawMu(q), 0.4);
+    }
+
     void derived() {
         DriveParams d;
         d.frequency_Hz = 4.0;

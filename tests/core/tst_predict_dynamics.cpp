@@ -33,12 +33,12 @@ SimParams truth() {
     p.rig.stiffness_N_per_m = 2000.0;
     p.rig.mass_kg = 0.52;
     p.rig.damping_Ns_per_m = dampingFromRatio(0.008, 2000.0, 0.52);
-    p.rateState.mu = 0.27;
-    p.rateState.C1 = 0.22;
-    p.rateState.eta_s_per_m = 0.8;
-    p.rateState.Dc_m = 25e-6;
-    p.rateState.vc_mps = 0.1;
-    p.rateState.epsT_N_per_m = 3e5;
+    p.lawParams<RateStateParams>().mu = 0.27;
+    p.lawParams<RateStateParams>().C1 = 0.22;
+    p.lawParams<RateStateParams>().eta_s_per_m = 0.8;
+    p.lawParams<RateStateParams>().Dc_m = 25e-6;
+    p.lawParams<RateStateParams>().vc_mps = 0.1;
+    p.lawParams<RateStateParams>().epsT_N_per_m = 3e5;
     p.integration.dt_s = 1.0 / 100000.0;
     p.integration.outputInterval_s = 1e-3;
     p.cycles = 9;
@@ -81,8 +81,8 @@ ModelSpec specOf(const SimParams& p) {
     ModelSpec m;
     m.law = LawKind::RateState;
     m.tieC1ToMu = false;
-    m.values = {{"mu", p.rateState.mu}, {"C1", p.rateState.C1}, {"eta", p.rateState.eta_s_per_m},
-                {"Dc", p.rateState.Dc_m}, {"vc", p.rateState.vc_mps}, {"epsT", p.rateState.epsT_N_per_m}};
+    m.values = {{"mu", p.lawParams<RateStateParams>().mu}, {"C1", p.lawParams<RateStateParams>().C1}, {"eta", p.lawParams<RateStateParams>().eta_s_per_m},
+                {"Dc", p.lawParams<RateStateParams>().Dc_m}, {"vc", p.lawParams<RateStateParams>().vc_mps}, {"epsT", p.lawParams<RateStateParams>().epsT_N_per_m}};
     return m;
 }
 

@@ -25,13 +25,13 @@ private slots:
         SimParams p = fig20Params();
         p.setup = SetupKind::Prescribed;
         p.law = LawKind::Coulomb;
-        p.coulomb.epsT_N_per_m = 2e4;  // a visible stick window: 2μt_N/ε_T = 0.155 A
+        p.lawParams<CoulombParams>().epsT_N_per_m = 2e4;  // a visible stick window: 2μt_N/ε_T = 0.155 A
         p.integration.outputInterval_s = p.drive.period() / 1000;
         p.cycles = 4;
         const RunResult r = simulate(p);
         QVERIFY2(r.ok(), r.message.c_str());
         QCOMPARE(r.samples.size(), size_t(4 * 1000 + 1));
-        const double muTN = p.coulomb.mu * p.rig.normalForce_N, A = p.drive.amplitude_m, eps = p.coulomb.epsT_N_per_m;
+        const double muTN = p.lawParams<CoulombParams>().mu * p.rig.normalForce_N, A = p.drive.amplitude_m, eps = p.lawParams<CoulombParams>().epsT_N_per_m;
         const double w = p.drive.omega();
         std::vector<long> stickRuns;  // lengths (in samples) of the stick windows after the first reversal
         long run = 0;
@@ -42,7 +42,7 @@ private slots:
             if (!s.stuck) {
                 QVERIFY(std::abs(std::abs(s.force_N) - muTN) < 1e-12 * muTN);
                 QVERIFY(s.force_N * s.relVel_mps > 0);
-                QVERIFY(std::abs(std::abs(s.ratio) - p.coulomb.mu) < 1e-12);
+                QVERIFY(std::abs(std::abs(s.ratio) - p.lawParams<CoulombParams>().mu) < 1e-12);
             } else {
                 QVERIFY(std::abs(s.force_N) <= muTN * (1 + 1e-12));
                 QCOMPARE(s.slipRate_mps, 0.0);
@@ -182,7 +182,7 @@ private slots:
         p.rig.damping_Ns_per_m = 0;
         const DynamicsModel m = DynamicsModel::fromParams(p);
         DynState s = m.initialState();
-        const double A = p.drive.amplitude_m, w = p.drive.omega(), eps = p.rateState.epsT_N_per_m;
+        const double A = p.drive.amplitude_m, w = p.drive.omega(), eps = p.lawParams<RateStateParams>().epsT_N_per_m;
         const double bound = A * w * std::sqrt(eps * p.rig.mass_kg) + p.rig.mass_kg * A * w * w;
         long stuck = 0;
         double maxF = 0, maxPreslipErr = 0, maxRel = 0;

@@ -350,8 +350,8 @@ private slots:
         QFETCH(double, epsT);
         QFETCH(double, eta);
         SimParams p = fig20Params();
-        p.rateState.epsT_N_per_m = epsT;
-        p.rateState.eta_s_per_m = eta;
+        p.lawParams<RateStateParams>().epsT_N_per_m = epsT;
+        p.lawParams<RateStateParams>().eta_s_per_m = eta;
         p.cycles = 2;
         const RunResult r = simulateDynamics(p);
         QVERIFY2(r.ok(), r.message.c_str());

@@ -75,7 +75,7 @@ private slots:
     void coulombReportsItsOwnMu() {
         SimParams p;
         p.law = LawKind::Coulomb;
-        p.coulomb.mu = 0.4;
+        p.lawParams<CoulombParams>().mu = 0.4;
         const std::string text = runCsvText(p, RunResult{});
         QVERIFY(text.find("# mu = 0.4\n") != std::string::npos);
         QVERIFY(text.find("# model = coulomb\n") != std::string::npos);

@@ -69,10 +69,10 @@ private slots:
         QSignalSpy spy(&panel, &ParameterPanel::paramsChanged);
         panel.spinBox("eta")->setValue(0.316);
         QCOMPARE(spy.count(), 1);
-        QCOMPARE(panel.settings().params.rateState.eta_s_per_m, 0.316);
+        QCOMPARE(panel.settings().params.lawParams<RateStateParams>().eta_s_per_m, 0.316);
         QVERIFY(std::abs(panel.slider("eta")->value() - kSliderSteps / 2) <= 1);
         panel.spinBox("Dc")->setValue(25.0);   // µm
-        QVERIFY(std::abs(panel.settings().params.rateState.Dc_m - 25e-6) < 1e-15);
+        QVERIFY(std::abs(panel.settings().params.lawParams<RateStateParams>().Dc_m - 25e-6) < 1e-15);
     }
 
     void modelSelectorDisablesRateStateOnlyFields() {
@@ -132,8 +132,8 @@ private slots:
         Preset p;
         QVERIFY(findPreset("fig23", p));
         s.settings.params = p.params;
-        s.settings.params.rateState.Dc_m = 17.25e-6;
-        s.settings.params.coulomb.mu = 0.31;   // the Coulomb law may differ
+        s.settings.params.lawParams<RateStateParams>().Dc_m = 17.25e-6;
+        s.settings.params.lawParams<CoulombParams>().mu = 0.31;   // the Coulomb law may differ
         s.settings.model = ModelChoice::Both;
         s.settings.preset = "fig23";
         s.visibleViews = QStringList{"timeseries", "rig"};
@@ -150,8 +150,8 @@ private slots:
             getParam(back.settings.params, k, b);
             QVERIFY2(a == b, k.c_str());   // bit-exact through JSON
         }
-        QCOMPARE(back.settings.params.coulomb.mu, 0.31);
-        QCOMPARE(back.settings.params.coulomb.epsT_N_per_m, s.settings.params.coulomb.epsT_N_per_m);
+        QCOMPARE(back.settings.params.lawParams<CoulombParams>().mu, 0.31);
+        QCOMPARE(back.settings.params.lawParams<CoulombParams>().epsT_N_per_m, s.settings.params.lawParams<CoulombParams>().epsT_N_per_m);
         QVERIFY(back.settings.model == ModelChoice::Both);
         QVERIFY(back.settings.params.setup == s.settings.params.setup);
         QCOMPARE(back.settings.preset, QString("fig23"));

@@ -193,7 +193,7 @@ private slots:
         QwtPlotCurve* c = w->views()->timeSeries()->curve("Coulomb: F/t_N");
         double maxRatio = 0;
         for (size_t i = 0; i < c->dataSize(); ++i) maxRatio = std::max(maxRatio, std::abs(c->sample(i).y()));
-        QVERIFY(std::abs(maxRatio - o.settings.params.coulomb.mu) < 1e-6);
+        QVERIFY(std::abs(maxRatio - o.settings.params.lawParams<CoulombParams>().mu) < 1e-6);
         w->panel()->modelBox()->setCurrentIndex(w->panel()->modelBox()->findData(int(ModelChoice::RateState)));
         w->panel()->loadPreset("fig20");
         QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return s.preset == "fig20" && s.model == ModelChoice::RateState; }));
@@ -309,13 +309,13 @@ private slots:
             getParam(back.params, k, b);
             QVERIFY2(a == b, k.c_str());
         }
-        QCOMPARE(back.params.rateState.eta_s_per_m, 0.45);
+        QCOMPARE(back.params.lawParams<RateStateParams>().eta_s_per_m, 0.45);
         QVERIFY(back.model == ModelChoice::Both);
         QVERIFY(w->dock("spectrum")->isHidden());
         QVERIFY(!w->dock("timeseries")->isHidden());
         // And the views follow the loaded parameters.
         QVERIFY(waitForRun(*w, [](const ModelSettings& s) {
-            return s.params.rateState.eta_s_per_m == 0.45 && s.model == ModelChoice::Both;
+            return s.params.lawParams<RateStateParams>().eta_s_per_m == 0.45 && s.model == ModelChoice::Both;
         }));
     }
 };
