@@ -95,10 +95,10 @@ void addFitCommand(CLI::App& root, int& exitCode) {
     auto* cmd = root.add_subcommand("fit", "Fit the friction law to measured runs (import, preprocessing, Ceres least squares)");
     cmd->add_option("--data", o->req.in.data, "measured runs (CSV), fitted jointly")->required()->expected(1, -1);
     cmd->add_option("--setup", o->req.in.setup, "prescribed (slip in, force out) or dynamics (stage in, slider and force out); default from the columns");
-    cmd->add_option("--model", o->req.model, "a law (rate-state, coulomb, …) or both (rate-state and Coulomb)")->capture_default_str();
+    cmd->add_option("--model", o->req.model, "a law (rate-state, coulomb, dieterich-ruina, …) or both (rate-state and Coulomb)")->capture_default_str();
     cmd->add_option("--free", o->req.free,
                     "free parameters (a law's keys it lacks are dropped): " + fitParamKeys() +
-                        " zeta")->capture_default_str();
+                        " zeta; e.g. mu,a,b,Dc,epsT for --model dieterich-ruina")->capture_default_str();
     cmd->add_option("--columns", o->req.in.columns, "SIGNAL=COLUMN mappings, e.g. friction=Fx (signals: time stage_disp slider_disp slip rel_vel stage_vel slider_vel friction normal tension slider_accel)");
     cmd->add_option("--units", o->req.in.units, "SIGNAL=UNIT, e.g. stage_disp=mm");
     cmd->add_option("--manifest", o->req.in.manifest, "dataset manifest JSON (per run k, A, f, tN; nominal mass)");

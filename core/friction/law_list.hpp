@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "coulomb.hpp"
+#include "dieterich_ruina.hpp"
 #include "rate_state.hpp"
 
 namespace stickslip {
@@ -19,7 +20,7 @@ struct LawList {
     static constexpr int size = sizeof...(L);
 };
 
-using RegisteredLaws = LawList<RateStateLaw, CoulombLaw>;
+using RegisteredLaws = LawList<RateStateLaw, CoulombLaw, DieterichRuinaLaw>;
 
 // The paper's two laws are named; every law (these included) is also its index in RegisteredLaws.
 enum class LawKind : int { RateState = 0, Coulomb = 1 };

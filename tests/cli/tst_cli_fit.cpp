@@ -167,6 +167,25 @@ private slots:
         checkReport(readJson(rep), res, false, {"mu", "eta", "epsT"});
     }
 
+    // A law added by registration alone (Dieterich–Ruina) is simulated and fitted by the same
+    // commands; its own keys (a, b) are free parameters like any other.
+    void dieterichRuinaSimulatesAndFits() {
+        QTemporaryDir dir;
+        const QString run = dir.filePath("dr.csv"), rep = dir.filePath("fit.json"), res = dir.filePath("res.csv");
+        Result r = runCli({"simulate", "--model", "dieterich-ruina", "--set", "a=0.02", "--cycles", "3", "--out", run});
+        QVERIFY2(r.exitCode == 0, r.err.constData());
+        QFile f(run);
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        const QByteArray text = f.readAll();
+        QVERIFY(text.contains("# model = dieterich-ruina") && text.contains("# a = 0.02\n"));
+        r = runCli({"fit", "--data", d05("run_03.csv"), "--validate-on", d05("run_05.csv"), "--manifest", d05("manifest.json"),
+                    "--model", "dieterich-ruina", "--free", "mu,a,b,epsT", "--multistarts", "1", "--max-iterations", "4",
+                    "--report", rep, "--residuals", res});
+        QVERIFY2(r.exitCode == 0, r.err.constData());
+        const json j = readJson(rep);
+        checkReport(j, res, true, {"mu", "a", "b", "epsT"}, "dieterich-ruina");
+    }
+
     void dynamicsD05WithManifest() {
         QTemporaryDir dir;
         const QString rep = dir.filePath("fit.json"), res = dir.filePath("res.csv");

@@ -165,7 +165,7 @@ private slots:
         const std::vector<std::pair<const char*, double>> bad = {
             {"A", -1e-3}, {"f", 0}, {"phase", kInf}, {"tN", -6.2}, {"k", -1}, {"m", 0}, {"c", -1}, {"mu", -0.25},
             {"eta", 0}, {"Dc", 0}, {"C1", -1}, {"r", 0}, {"vc", 0}, {"epsT", 0}, {"dt", 0}, {"output_every", 0},
-            {"cycles", 0}, {"transient", -1}};
+            {"cycles", 0}, {"transient", -1}, {"a", 0}, {"b", -1}, {"V0", 0}};
         QCOMPARE(bad.size(), paramKeys().size());
         for (const auto& [key, v] : bad) {
             for (LawKind law : allLaws()) {
@@ -204,7 +204,8 @@ private slots:
     void keysRoundTrip() {
         const std::vector<std::string> keys = paramKeys();
         const std::set<std::string> expected = {"A", "f", "phase", "tN", "k", "m", "c", "mu", "eta", "Dc",
-                                                "C1", "r", "vc", "epsT", "dt", "output_every", "cycles", "transient"};
+                                                "C1", "r", "vc", "epsT", "dt", "output_every", "cycles", "transient",
+                                                "a", "b", "V0"};
         QCOMPARE(std::set<std::string>(keys.begin(), keys.end()), expected);
         SimParams p;
         double x = 1.25;
@@ -249,6 +250,7 @@ private slots:
         QCOMPARE(paramDefault("mu"), p.lawParams<RateStateParams>().mu);
         QCOMPARE(paramDefault("Dc"), p.lawParams<RateStateParams>().Dc_m);
         QCOMPARE(paramDefault("m"), p.rig.mass_kg);
+        QCOMPARE(paramDefault("b"), p.lawParams<DieterichRuinaParams>().b);
         QVERIFY(std::isnan(paramDefault("nope")));
         identify::FitParameter fp;
         QVERIFY(identify::defaultParameter("m", SetupKind::Dynamics, fp));
@@ -261,6 +263,8 @@ private slots:
         QVERIFY(!identify::defaultParameter("dt", SetupKind::Dynamics, fp));  // no fit range
         // A law key written once sets every law having it; getParam reads the selected law's.
         SimParams q;
+        QVERIFY(setParam(q, "Dc", 5e-6));
+        QCOMPARE(q.lawParams<DieterichRuinaParams>().Dc_m, 5e-6);
         q.lawParams<CoulombParams>().mu = 0.4;
         q.law = LawKind::Coulomb;
         double v = 0;
