@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../dsp/iir.hpp"
 #include "../integrate/dynamics.hpp"
 #include "../integrate/prescribed.hpp"
 
@@ -85,7 +86,7 @@ Prediction predictPrescribed(const CleanRun& run, const FrictionLaw& law, double
                 d[i - first] = Fk[k] + a * (Fk[k + 1] - Fk[k]) - Fu[i];
             }
         d[last - first] = Fk.back() - Fu[last];
-        d = filtfiltZeroExtended(run.filter, d);
+        d = dsp::filtfiltZeroExtended(run.filter, d);
         for (size_t k = 0; k < idx.size(); ++k) Fk[k] = F[idx[k]] + d[idx[k] - first];
     }
     for (size_t k = 0; k < idx.size(); ++k)
@@ -144,7 +145,7 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
     const size_t spacing = std::max(segLen, static_cast<size_t>(std::lround(s.segmentSpacing_s / run.dt_s)));
     const size_t rstride = static_cast<size_t>(s.residualStride);
     const bool filtered = s.filterPrediction && !run.filter.empty();
-    const size_t margin = filtered ? impulseResponseLength(run.filter) : 0;
+    const size_t margin = filtered ? dsp::impulseResponseLength(run.filter) : 0;
     const std::vector<double>& Fm = r[Signal::Friction];
     const std::vector<double>& Xm = r[Signal::SliderDisp];
     const std::vector<double>& Vm = r[Signal::SliderVel];
@@ -209,8 +210,8 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
             eX[j] = st.x - Xu[s0 + j];
         }
         if (filtered) {
-            eF = filtfiltZeroExtended(run.filter, eF, margin);
-            eX = filtfiltZeroExtended(run.filter, eX, margin);
+            eF = dsp::filtfiltZeroExtended(run.filter, eF, margin);
+            eX = dsp::filtfiltZeroExtended(run.filter, eX, margin);
         }
         return true;
     };
