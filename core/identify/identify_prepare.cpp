@@ -89,7 +89,6 @@ void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& op
     const double dt = (r.t_s.back() - r.t_s.front()) / static_cast<double>(N - 1);
     std::vector<double> u(N);
     for (size_t i = 0; i < N; ++i) u[i] = r.slip_m[i] + r.slider_m[i];
-    std::vector<double> ud;
     if (r.frequency_Hz > 0) {
         const dsp::HarmonicFit fit = dsp::harmonicFit(r.t_s, u, r.frequency_Hz, 1, 0, N);
         const double amp = fit.amplitude(1);

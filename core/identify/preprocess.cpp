@@ -47,72 +47,66 @@ nlohmann::json toJson(const PreprocessSettings& s) {
     return j;
 }
 
-bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& out, std::string* error) {
-    using io::Signal;
-    CleanRun c;
-    c.run = raw;
+namespace {
+
+using io::Signal;
+
+// Step 1: the median sampling step, and resampling to it when the time column is irregular.
+bool makeUniform(const io::Run& raw, const PreprocessSettings& s, CleanRun& c, std::string* error) {
     io::Run& r = c.run;
     std::vector<double>& t = r[Signal::Time];
-    if (t.size() < 8) {
-        if (error) *error = raw.file + ": too few samples";
-        return false;
-    }
-    // 1. uniform step
     {
         std::vector<double> d(t.size() - 1);
         for (size_t i = 1; i < t.size(); ++i) d[i - 1] = t[i] - t[i - 1];
         c.dt_s = dsp::median(std::move(d));
     }
     const double irr = dsp::samplingIrregularity(t);
-    if (irr > s.irregularityTolerance) {
-        if (!s.resample) {
-            if (error) *error = raw.file + ": time step irregular by " + std::to_string(100 * irr) + " % and resampling is off";
-            return false;
-        }
-        const size_t n = static_cast<size_t>(std::floor((t.back() - t.front()) / c.dt_s)) + 1;
-        const std::vector<double> told = t;
-        for (size_t k = 1; k < io::kSignalCount; ++k)
-            if (!r.channels[k].empty()) r.channels[k] = dsp::resampleLinear(told, r.channels[k], told.front(), c.dt_s, n);
-        t.resize(n);
-        for (size_t i = 0; i < n; ++i) t[i] = told.front() + static_cast<double>(i) * c.dt_s;
-        c.resampled = true;
-        c.notes.push_back("resampled to a uniform step of " + std::to_string(c.dt_s) + " s");
-    }
-    const double fs = 1.0 / c.dt_s;
-    const std::vector<std::string> bad = s.validate(fs);
-    if (!bad.empty()) {
-        if (error) {
-            *error = raw.file + ": ";
-            for (size_t i = 0; i < bad.size(); ++i) *error += (i ? "; " : "") + bad[i];
-        }
+    if (!(irr > s.irregularityTolerance)) return true;  // NaN (a broken time column): as before, no resampling
+    if (!s.resample) {
+        if (error) *error = raw.file + ": time step irregular by " + std::to_string(100 * irr) + " % and resampling is off";
         return false;
     }
-    // 2. zero-phase filters on every measured signal
+    const size_t n = static_cast<size_t>(std::floor((t.back() - t.front()) / c.dt_s)) + 1;
+    const std::vector<double> told = t;
+    for (size_t k = 1; k < io::kSignalCount; ++k)
+        if (!r.channels[k].empty()) r.channels[k] = dsp::resampleLinear(told, r.channels[k], told.front(), c.dt_s, n);
+    t.resize(n);
+    for (size_t i = 0; i < n; ++i) t[i] = told.front() + static_cast<double>(i) * c.dt_s;
+    c.resampled = true;
+    c.notes.push_back("resampled to a uniform step of " + std::to_string(c.dt_s) + " s");
+    return true;
+}
+
+// Step 2: the band-stop then low-pass cascade at rate fs (empty when both are off).
+dsp::Sos designFilter(const FilterSettings& f, double fs) {
     dsp::Sos sos;
-    if (s.filters.bandStop) {
-        const dsp::Sos bs = dsp::butterworthBandstop(s.filters.bandStopOrder, s.filters.bandStopCenter_Hz - s.filters.bandStopWidth_Hz / 2,
-                                           s.filters.bandStopCenter_Hz + s.filters.bandStopWidth_Hz / 2, fs);
+    if (f.bandStop) {
+        const dsp::Sos bs = dsp::butterworthBandstop(f.bandStopOrder, f.bandStopCenter_Hz - f.bandStopWidth_Hz / 2,
+                                                     f.bandStopCenter_Hz + f.bandStopWidth_Hz / 2, fs);
         sos.insert(sos.end(), bs.begin(), bs.end());
     }
-    if (s.filters.lowPass) {
-        const dsp::Sos lp = dsp::butterworthLowpass(s.filters.lowPassOrder, s.filters.lowPass_Hz, fs);
+    if (f.lowPass) {
+        const dsp::Sos lp = dsp::butterworthLowpass(f.lowPassOrder, f.lowPass_Hz, fs);
         sos.insert(sos.end(), lp.begin(), lp.end());
     }
-    if (!sos.empty()) {
-        c.unfilteredForce_N = r.has(Signal::Friction) ? r[Signal::Friction] : std::vector<double>{};
-        c.unfilteredSlider_m = r.has(Signal::SliderDisp) ? r[Signal::SliderDisp] : std::vector<double>{};
-    }
-    if (!sos.empty())
-        for (size_t k = 1; k < io::kSignalCount; ++k)
-            if (!r.channels[k].empty()) r.channels[k] = dsp::filtfilt(sos, r.channels[k]);
-    // 3. derived signals
+    return sos;
+}
+
+void subtractInto(std::vector<double>& out, const std::vector<double>& a, const std::vector<double>& b) {
+    out = a;
+    for (size_t i = 0; i < out.size(); ++i) out[i] -= b[i];
+}
+
+// Step 3: slip and the velocities that were not measured, from the filtered displacements.
+void deriveSignals(CleanRun& c, const PreprocessSettings& s) {
+    io::Run& r = c.run;
     auto sgd = [&](const std::vector<double>& y) { return dsp::savitzkyGolay(y, c.dt_s, s.sgHalfWindow, s.sgOrder, 1); };
     if (!r.has(Signal::Slip) && r.has(Signal::StageDisp)) {
-        r[Signal::Slip] = r[Signal::StageDisp];
         if (r.has(Signal::SliderDisp)) {
-            for (size_t i = 0; i < r[Signal::Slip].size(); ++i) r[Signal::Slip][i] -= r[Signal::SliderDisp][i];
+            subtractInto(r[Signal::Slip], r[Signal::StageDisp], r[Signal::SliderDisp]);
             c.notes.push_back("slip g = stage_disp - slider_disp");
         } else {
+            r[Signal::Slip] = r[Signal::StageDisp];
             c.notes.push_back("no slider displacement: slider held (Fig. 15a), slip g = stage_disp");
         }
     }
@@ -124,38 +118,45 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
         r[Signal::SliderVel] = sgd(r[Signal::SliderDisp]);
         c.notes.push_back("slider_vel from slider_disp by Savitzky-Golay");
     }
-    if (!r.has(Signal::RelVel)) {
-        if (r.has(Signal::StageVel) && r.has(Signal::SliderVel)) {
-            r[Signal::RelVel] = r[Signal::StageVel];
-            for (size_t i = 0; i < r[Signal::RelVel].size(); ++i) r[Signal::RelVel][i] -= r[Signal::SliderVel][i];
-            c.notes.push_back("rel_vel = stage_vel - slider_vel");
-        } else if (r.has(Signal::StageVel) && !r.has(Signal::SliderDisp)) {
-            r[Signal::RelVel] = r[Signal::StageVel];
-            c.notes.push_back("rel_vel = stage_vel (slider held)");
-        } else if (r.has(Signal::Slip)) {
-            r[Signal::RelVel] = sgd(r[Signal::Slip]);
-            c.notes.push_back("rel_vel from slip by Savitzky-Golay");
-        }
+    if (r.has(Signal::RelVel)) return;
+    if (r.has(Signal::StageVel) && r.has(Signal::SliderVel)) {
+        subtractInto(r[Signal::RelVel], r[Signal::StageVel], r[Signal::SliderVel]);
+        c.notes.push_back("rel_vel = stage_vel - slider_vel");
+    } else if (r.has(Signal::StageVel) && !r.has(Signal::SliderDisp)) {
+        r[Signal::RelVel] = r[Signal::StageVel];
+        c.notes.push_back("rel_vel = stage_vel (slider held)");
+    } else if (r.has(Signal::Slip)) {
+        r[Signal::RelVel] = sgd(r[Signal::Slip]);
+        c.notes.push_back("rel_vel from slip by Savitzky-Golay");
     }
-    // 4. drive period, and the smooth stage input of dynamics runs
+}
+
+// Step 4: the drive period, and for dynamics runs the stage displacement replaced by its
+// Fourier fit at the refined drive frequency (with the signals derived from it).
+void driveAndSmoothStage(const io::Run& raw, CleanRun& c, const PreprocessSettings& s) {
+    io::Run& r = c.run;
+    const std::vector<double>& t = r[Signal::Time];
     double f = 0.0;
     if (r.setting("f", f) && f > 0.0) c.period_s = 1.0 / f;
     else if (r.has(Signal::StageDisp)) c.period_s = dsp::estimatePeriod(t, r[Signal::StageDisp]);
-    if (s.stageFourierOrder > 0 && c.period_s > 0.0 && r.has(Signal::SliderDisp) && r.has(Signal::StageDisp)) {
-        const double fr = dsp::refineFrequency(t, r[Signal::StageDisp], 1.0 / c.period_s, s.stageFourierOrder);
-        c.period_s = 1.0 / fr;
-        r[Signal::StageDisp] = dsp::fourierFit(t, r[Signal::StageDisp], fr, s.stageFourierOrder, 0, t.size());
-        if (!raw.has(Signal::StageVel)) r[Signal::StageVel] = sgd(r[Signal::StageDisp]);
-        if (r.has(Signal::SliderVel) && !raw.has(Signal::RelVel)) {
-            r[Signal::RelVel] = r[Signal::StageVel];
-            for (size_t i = 0; i < r[Signal::RelVel].size(); ++i) r[Signal::RelVel][i] -= r[Signal::SliderVel][i];
-        }
-        r[Signal::Slip] = r[Signal::StageDisp];
-        for (size_t i = 0; i < r[Signal::Slip].size(); ++i) r[Signal::Slip][i] -= r[Signal::SliderDisp][i];
-        c.notes.push_back("stage_disp replaced by its Fourier fit (" + std::to_string(s.stageFourierOrder) +
-                          " harmonics) at the refined drive frequency " + std::to_string(fr) + " Hz");
-    }
-    // 5. trimming
+    if (!(s.stageFourierOrder > 0 && c.period_s > 0.0 && r.has(Signal::SliderDisp) && r.has(Signal::StageDisp))) return;
+    const double fr = dsp::refineFrequency(t, r[Signal::StageDisp], 1.0 / c.period_s, s.stageFourierOrder);
+    c.period_s = 1.0 / fr;
+    r[Signal::StageDisp] = dsp::fourierFit(t, r[Signal::StageDisp], fr, s.stageFourierOrder, 0, t.size());
+    if (!raw.has(Signal::StageVel))
+        r[Signal::StageVel] = dsp::savitzkyGolay(r[Signal::StageDisp], c.dt_s, s.sgHalfWindow, s.sgOrder, 1);
+    if (r.has(Signal::SliderVel) && !raw.has(Signal::RelVel))
+        subtractInto(r[Signal::RelVel], r[Signal::StageVel], r[Signal::SliderVel]);
+    subtractInto(r[Signal::Slip], r[Signal::StageDisp], r[Signal::SliderDisp]);
+    c.notes.push_back("stage_disp replaced by its Fourier fit (" + std::to_string(s.stageFourierOrder) +
+                      " harmonics) at the refined drive frequency " + std::to_string(fr) + " Hz");
+}
+
+// Step 5: the fit window [begin, end): steady drive amplitude, the requested cuts, and the
+// filters' start-up at both ends.
+bool trimWindow(const io::Run& raw, CleanRun& c, const PreprocessSettings& s, size_t sections, std::string* error) {
+    const io::Run& r = c.run;
+    const std::vector<double>& t = r[Signal::Time];
     const size_t n = t.size();
     size_t b = 0, e = n;
     if (s.trim.steadyAmplitude && c.period_s > 0.0 && r.has(Signal::StageDisp)) {
@@ -173,7 +174,7 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
     // the identify loop's spurious frictional_lag on D05 from 1.4 ms (ΔBIC −7, rejected) to
     // 3.8 ms (ΔBIC −25, p 0.048, added), i.e. that candidate's estimate depends on the first
     // and last 0.25 s of the runs (open, docs/identify-results.md).
-    const size_t settle = std::min<size_t>(n / 10, 5 * sos.size());
+    const size_t settle = std::min<size_t>(n / 10, 5 * sections);
     b = std::max(b, settle);
     e = std::min(e, n - settle);
     if (e <= b + 8) {
@@ -182,9 +183,44 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
     }
     c.begin = b;
     c.end = e;
+    c.notes.push_back("fit window " + std::to_string(t[b]) + " .. " + std::to_string(t[e - 1]) + " s");
+    return true;
+}
+
+}  // namespace
+
+bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& out, std::string* error) {
+    CleanRun c;
+    c.run = raw;
+    io::Run& r = c.run;
+    if (r[Signal::Time].size() < 8) {
+        if (error) *error = raw.file + ": too few samples";
+        return false;
+    }
+    if (!makeUniform(raw, s, c, error)) return false;
+    const double fs = 1.0 / c.dt_s;
+    const std::vector<std::string> bad = s.validate(fs);
+    if (!bad.empty()) {
+        if (error) {
+            *error = raw.file + ": ";
+            for (size_t i = 0; i < bad.size(); ++i) *error += (i ? "; " : "") + bad[i];
+        }
+        return false;
+    }
+    // Zero-phase filters on every measured signal; the force and slider displacement are kept
+    // unfiltered as well (CleanRun::unfilteredForce_N).
+    const dsp::Sos sos = designFilter(s.filters, fs);
+    if (!sos.empty()) {
+        c.unfilteredForce_N = r.has(Signal::Friction) ? r[Signal::Friction] : std::vector<double>{};
+        c.unfilteredSlider_m = r.has(Signal::SliderDisp) ? r[Signal::SliderDisp] : std::vector<double>{};
+        for (size_t k = 1; k < io::kSignalCount; ++k)
+            if (!r.channels[k].empty()) r.channels[k] = dsp::filtfilt(sos, r.channels[k]);
+    }
+    deriveSignals(c, s);
+    driveAndSmoothStage(raw, c, s);
+    if (!trimWindow(raw, c, s, sos.size(), error)) return false;
     c.filter = sos;
     c.filterSettings = s.filters;
-    c.notes.push_back("fit window " + std::to_string(t[b]) + " .. " + std::to_string(t[e - 1]) + " s");
     out = std::move(c);
     return true;
 }
