@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "../dsp/stats.hpp"
 #include "correlation.hpp"
 #include "loop_orientation.hpp"
 #include "spectrum.hpp"
@@ -252,8 +253,7 @@ bool analyzeRunTable(const io::CsvTable& t, const std::string& path, const Analy
     if (c.n < 64) return fail(path + ": " + std::to_string(c.n) + " data rows; need at least 64");
     std::vector<double> dts(c.n - 1);
     for (std::size_t i = 0; i + 1 < c.n; ++i) dts[i] = (*c.time)[i + 1] - (*c.time)[i];
-    std::nth_element(dts.begin(), dts.begin() + dts.size() / 2, dts.end());
-    const double dt = dts[dts.size() / 2];
+    const double dt = dsp::median(std::move(dts));
     if (!(dt > 0)) return fail(path + ": time_s is not increasing");
     c.fs = 1.0 / dt;
     c.stage = col(t, "stage_disp_m");

@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "../dsp/stats.hpp"
 #include "../friction/friction_law.hpp"
 #include "curve_coordinates.hpp"
 #include "fit.hpp"
@@ -47,8 +48,7 @@ double estimateMu(const CleanRun& c) {
     for (size_t i = c.begin; i < c.end; ++i)
         if (std::abs(r[Signal::RelVel][i]) > 0.5 * vmax) ratio.push_back(std::abs(r[Signal::Friction][i]) / tN);
     if (ratio.empty()) return -1;
-    std::nth_element(ratio.begin(), ratio.begin() + static_cast<long>(ratio.size() / 2), ratio.end());
-    return ratio[ratio.size() / 2];
+    return dsp::median(std::move(ratio));
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <thread>
 
+#include "../dsp/stats.hpp"
 #include "../integrate/dynamics.hpp"
 #include "identify_internal.hpp"
 
@@ -319,8 +320,7 @@ std::map<std::string, double> baselineStart(const Context& cx, const std::vector
     std::map<std::string, double> st;
     const RateStateParams& s0 = cx.opt->start;
     if (ratio.empty() || !(s0.mu > 0)) return st;
-    std::nth_element(ratio.begin(), ratio.begin() + static_cast<long>(ratio.size() / 2), ratio.end());
-    const double mu0 = ratio[ratio.size() / 2];
+    const double mu0 = dsp::median(std::move(ratio));
     if (!(mu0 > 0) || !std::isfinite(mu0)) return st;
     const double scale = mu0 / s0.mu;
     st["mu"] = mu0;

@@ -15,6 +15,7 @@
 
 #include <Eigen/Dense>
 
+#include "../dsp/iir.hpp"
 #include "fit.hpp"
 #include "identify.hpp"
 #include "noise_null.hpp"
@@ -28,7 +29,7 @@ struct Prepared {
     const IdentifyRun* run = nullptr;
     std::vector<double> t, g, V, F, a, x, xd;
     double invRmsF = 1.0;
-    Sos predictionFilter;  // the run's cleaning filters at the decimated rate (those below its Nyquist)
+    dsp::Sos predictionFilter;  // the run's cleaning filters at the decimated rate (those below its Nyquist)
     // The prediction y as the cleaned measurement would show it: F + filter(mask·(y − F)), the
     // difference taken only where the prediction applies (mask; all samples when null), so the
     // stick phases that are not compared cannot leak into compared samples.
@@ -37,7 +38,7 @@ struct Prepared {
         std::vector<double> d(y.size(), 0.0);
         for (size_t i = 0; i < y.size(); ++i)
             if (!mask || (*mask)[i]) d[i] = y[i] - F[i];
-        d = filtfiltZeroExtended(predictionFilter, d);
+        d = dsp::filtfiltZeroExtended(predictionFilter, d);
         for (size_t i = 0; i < y.size(); ++i) d[i] += F[i];
         return d;
     }
@@ -187,7 +188,7 @@ bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fi
 SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome& base, const std::vector<size_t>& fitIdx,
                            const std::vector<std::string>& cands, double neffCap);
 
-Sos predictionFilterAt(const FilterSettings& fs, double rate_Hz);
+dsp::Sos predictionFilterAt(const FilterSettings& fs, double rate_Hz);
 bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, Context& cx, int& decimation,
                     std::string& why);
 

@@ -8,6 +8,9 @@
 #include <numeric>
 #include <thread>
 
+#include "../dsp/fourier.hpp"
+#include "../dsp/iir.hpp"
+#include "../dsp/savitzky_golay.hpp"
 #include "../integrate/dynamics.hpp"
 #include "identify_internal.hpp"
 #include "preprocess.hpp"
@@ -49,12 +52,12 @@ bool makeIdentifyRun(const CleanRun& c, SetupKind setup, IdentifyRun& out, std::
         if (o.sliderVel_mps.empty() || o.accel_mps2.empty()) {
             // ẋ and ẍ by Savitzky–Golay from x when not measured.
             const auto& x = r[Signal::SliderDisp];
-            auto v = savitzkyGolay(x, c.dt_s, 7, 3, 1), a = savitzkyGolay(x, c.dt_s, 7, 3, 2);
+            auto v = dsp::savitzkyGolay(x, c.dt_s, 7, 3, 1), a = dsp::savitzkyGolay(x, c.dt_s, 7, 3, 2);
             if (o.sliderVel_mps.empty()) o.sliderVel_mps.assign(v.begin() + b, v.begin() + e);
             if (o.accel_mps2.empty()) o.accel_mps2.assign(a.begin() + b, a.begin() + e);
         }
     } else {
-        auto a = savitzkyGolay(r[Signal::Slip], c.dt_s, 7, 3, 2);
+        auto a = dsp::savitzkyGolay(r[Signal::Slip], c.dt_s, 7, 3, 2);
         o.accel_mps2.assign(a.begin() + b, a.begin() + e);
     }
     o.filtered = !c.filter.empty();
@@ -86,30 +89,16 @@ void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& op
     const double dt = (r.t_s.back() - r.t_s.front()) / static_cast<double>(N - 1);
     std::vector<double> u(N);
     for (size_t i = 0; i < N; ++i) u[i] = r.slip_m[i] + r.slider_m[i];
-    std::vector<double> ud;
     if (r.frequency_Hz > 0) {
-        const double w = 2.0 * M_PI * r.frequency_Hz;
-        Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-        Eigen::Vector3d b = Eigen::Vector3d::Zero();
-        for (size_t i = 0; i < N; ++i) {
-            const Eigen::Vector3d phi(1.0, std::cos(w * r.t_s[i]), std::sin(w * r.t_s[i]));
-            A += phi * phi.transpose();
-            b += phi * u[i];
-        }
-        const Eigen::Vector3d c = A.ldlt().solve(b);
-        double ss = 0;
-        for (size_t i = 0; i < N; ++i) {
-            const double e = u[i] - (c[0] + c[1] * std::cos(w * r.t_s[i]) + c[2] * std::sin(w * r.t_s[i]));
-            ss += e * e;
-        }
-        const double amp = std::hypot(c[1], c[2]);
-        if (amp > 0 && std::sqrt(ss / N) < 0.1 * amp) {
+        const dsp::HarmonicFit fit = dsp::harmonicFit(r.t_s, u, r.frequency_Hz, 1, 0, N);
+        const double amp = fit.amplitude(1);
+        if (amp > 0 && std::sqrt(fit.rss / N) < 0.1 * amp) {
             p.stageHarmonic = true;
-            p.uc0 = c[0]; p.ua = c[1]; p.ub = c[2]; p.omega = w;
+            p.uc0 = fit.mean; p.ua = fit.cosine[0]; p.ub = fit.sine[0]; p.omega = fit.omega;
         }
     }
-    const std::vector<double> us = savitzkyGolay(u, dt, 7, 3, 0), usd = savitzkyGolay(u, dt, 7, 3, 1);
-    const std::vector<double> xs = savitzkyGolay(r.slider_m, dt, 7, 3, 0), vs = savitzkyGolay(r.slider_m, dt, 7, 3, 1);
+    const std::vector<double> us = dsp::savitzkyGolay(u, dt, 7, 3, 0), usd = dsp::savitzkyGolay(u, dt, 7, 3, 1);
+    const std::vector<double> xs = dsp::savitzkyGolay(r.slider_m, dt, 7, 3, 0), vs = dsp::savitzkyGolay(r.slider_m, dt, 7, 3, 1);
     double cum = 0, ssx = 0;
     for (size_t i = 0; i < N; ++i) {
         if (i > 0) cum += std::abs(r.slip_m[i] - r.slip_m[i - 1]);
@@ -156,16 +145,16 @@ void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& op
 
 // The cleaning filters redesigned at the decimated rate fs; one whose band reaches 0.45 fs is
 // left out (the decimated samples cannot carry its effect).
-Sos predictionFilterAt(const FilterSettings& fs, double rate_Hz) {
-    Sos out;
+dsp::Sos predictionFilterAt(const FilterSettings& fs, double rate_Hz) {
+    dsp::Sos out;
     const double ny = 0.45 * rate_Hz;
     if (fs.bandStop && fs.bandStopCenter_Hz + 0.5 * fs.bandStopWidth_Hz < ny) {
-        const Sos bs = butterworthBandstop(fs.bandStopOrder, fs.bandStopCenter_Hz - 0.5 * fs.bandStopWidth_Hz,
+        const dsp::Sos bs = dsp::butterworthBandstop(fs.bandStopOrder, fs.bandStopCenter_Hz - 0.5 * fs.bandStopWidth_Hz,
                                            fs.bandStopCenter_Hz + 0.5 * fs.bandStopWidth_Hz, rate_Hz);
         out.insert(out.end(), bs.begin(), bs.end());
     }
     if (fs.lowPass && fs.lowPass_Hz < ny) {
-        const Sos lp = butterworthLowpass(fs.lowPassOrder, fs.lowPass_Hz, rate_Hz);
+        const dsp::Sos lp = dsp::butterworthLowpass(fs.lowPassOrder, fs.lowPass_Hz, rate_Hz);
         out.insert(out.end(), lp.begin(), lp.end());
     }
     return out;

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
+#include "../dsp/iir.hpp"
 #include "../integrate/dynamics.hpp"
 #include "../integrate/prescribed.hpp"
 
@@ -85,7 +87,7 @@ Prediction predictPrescribed(const CleanRun& run, const FrictionLaw& law, double
                 d[i - first] = Fk[k] + a * (Fk[k + 1] - Fk[k]) - Fu[i];
             }
         d[last - first] = Fk.back() - Fu[last];
-        d = filtfiltZeroExtended(run.filter, d);
+        d = dsp::filtfiltZeroExtended(run.filter, d);
         for (size_t k = 0; k < idx.size(); ++k) Fk[k] = F[idx[k]] + d[idx[k] - first];
     }
     for (size_t k = 0; k < idx.size(); ++k)
@@ -105,7 +107,9 @@ namespace {
 // u̇ jump at every sample (by ü·Δt, ≈ 1 mm/s on D05); through the contact stiffness ε_T those
 // kicks drive the stick mode, and the fit retunes m* and ε_T to them (m* +4 standard errors
 // on D05 with every other input exact).
-StageMotion smoothStage(const std::vector<double>& t, const std::vector<double>& u, size_t s0, size_t len, long sub) {
+// No motion (and `issues` set) when the run's time column does not increase strictly there.
+std::optional<StageMotion> smoothStage(const std::vector<double>& t, const std::vector<double>& u, size_t s0, size_t len,
+                                       long sub, ParamIssues* issues) {
     const size_t n = u.size();
     std::vector<double> ts, us;
     ts.reserve(len * static_cast<size_t>(sub) + 1);
@@ -121,7 +125,7 @@ StageMotion smoothStage(const std::vector<double>& t, const std::vector<double>&
     const size_t e = std::min(s0 + len, n - 1);
     ts.push_back(t[e]);
     us.push_back(u[e]);
-    return StageMotion::tabulated(std::move(ts), std::move(us));
+    return StageMotion::tabulated(std::move(ts), std::move(us), issues);
 }
 
 }  // namespace
@@ -144,7 +148,7 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
     const size_t spacing = std::max(segLen, static_cast<size_t>(std::lround(s.segmentSpacing_s / run.dt_s)));
     const size_t rstride = static_cast<size_t>(s.residualStride);
     const bool filtered = s.filterPrediction && !run.filter.empty();
-    const size_t margin = filtered ? impulseResponseLength(run.filter) : 0;
+    const size_t margin = filtered ? dsp::impulseResponseLength(run.filter) : 0;
     const std::vector<double>& Fm = r[Signal::Friction];
     const std::vector<double>& Xm = r[Signal::SliderDisp];
     const std::vector<double>& Vm = r[Signal::SliderVel];
@@ -209,8 +213,8 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
             eX[j] = st.x - Xu[s0 + j];
         }
         if (filtered) {
-            eF = filtfiltZeroExtended(run.filter, eF, margin);
-            eX = filtfiltZeroExtended(run.filter, eX, margin);
+            eF = dsp::filtfiltZeroExtended(run.filter, eF, margin);
+            eX = dsp::filtfiltZeroExtended(run.filter, eX, margin);
         }
         return true;
     };
@@ -235,7 +239,13 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
     }
     std::vector<double> pF, pX, qF, qX;  // displaced and trial trajectories
     for (size_t s0 : starts) {
-        m.stage = smoothStage(t, U, s0, segLen, sub);
+        ParamIssues stageIssues;
+        std::optional<StageMotion> stage = smoothStage(t, U, s0, segLen, sub, &stageIssues);
+        if (!stage) {
+            pr.message = r.file + ": stage motion of the segment at t = " + std::to_string(t[s0]) + " s: " + formatIssues(stageIssues);
+            return pr;
+        }
+        m.stage = std::move(*stage);
         double x0 = Xm[s0], v0 = Vm[s0];
         if (!simulateSegment(s0, x0, v0, dF, dX)) {
             pr.message = failure;

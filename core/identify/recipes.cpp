@@ -2,17 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+
+#include "../dsp/stats.hpp"
 
 namespace stickslip::identify {
-
-namespace {
-double medianOf(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    const size_t mid = v.size() / 2;
-    std::nth_element(v.begin(), v.begin() + static_cast<long>(mid), v.end());
-    return v[mid];
-}
-}  // namespace
 
 PullEstimate muFromPull(const std::vector<double>& V, const std::vector<double>& F, double tN, double tol) {
     PullEstimate e;
@@ -30,7 +24,7 @@ PullEstimate muFromPull(const std::vector<double>& V, const std::vector<double>&
     std::vector<double> fast;
     for (size_t i = 0; i < n; ++i)
         if (std::abs(V[i]) > 0.5 * vmax) fast.push_back(std::abs(V[i]));
-    const double plateau = medianOf(fast);
+    const double plateau = dsp::median(fast);
     size_t bestB = 0, bestE = 0;
     for (size_t i = 0; i < n;) {
         auto inPull = [&](size_t k, double sign) {
@@ -56,7 +50,7 @@ PullEstimate muFromPull(const std::vector<double>& V, const std::vector<double>&
     e.mu = std::abs(F[e.peakIndex]) / tN;
     std::vector<double> late;
     for (size_t i = bestB + (bestE - bestB) / 2; i < bestE; ++i) late.push_back(std::abs(F[i]) / tN);
-    e.kineticRatio = medianOf(late);
+    e.kineticRatio = dsp::median(std::move(late));
     e.ok = true;
     return e;
 }

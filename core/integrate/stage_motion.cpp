@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
+#include <string>
 
 namespace stickslip {
 
@@ -14,11 +14,29 @@ StageMotion StageMotion::harmonic(const DriveParams& d) {
     return m;
 }
 
-StageMotion StageMotion::tabulated(std::vector<double> t, std::vector<double> u) {
-    if (t.size() < 2 || t.size() != u.size())
-        throw std::invalid_argument("tabulated stage motion needs >= 2 samples of equal length");
+ParamIssues StageMotion::validateTable(const std::vector<double>& t, const std::vector<double>& u) {
+    ParamIssues out;
+    if (t.size() < 2) out.push_back({"stage table samples", static_cast<double>(t.size()), ">= 2"});
+    if (u.size() != t.size())
+        out.push_back({"stage table u samples", static_cast<double>(u.size()),
+                       "equal to the t samples (" + std::to_string(t.size()) + ")"});
+    // Only the first step that does not increase: a bad table usually repeats one fault many times.
     for (size_t i = 1; i < t.size(); ++i)
-        if (!(t[i] > t[i - 1])) throw std::invalid_argument("tabulated stage motion: time must increase strictly");
+        if (!(t[i] > t[i - 1])) {
+            out.push_back({"stage table t[" + std::to_string(i) + "]", t[i],
+                           "> t[" + std::to_string(i - 1) + "] = " + std::to_string(t[i - 1]) + " (time must increase strictly)"});
+            break;
+        }
+    return out;
+}
+
+std::optional<StageMotion> StageMotion::tabulated(std::vector<double> t, std::vector<double> u, ParamIssues* issues) {
+    ParamIssues bad = validateTable(t, u);
+    if (!bad.empty()) {
+        if (issues) *issues = std::move(bad);
+        return std::nullopt;
+    }
+    if (issues) issues->clear();
     StageMotion m;
     m.table_t_ = std::move(t);
     m.table_u_ = std::move(u);

@@ -6,8 +6,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/dsp/iir.hpp"
+#include "core/dsp/sampling.hpp"
+#include "core/dsp/savitzky_golay.hpp"
 #include "core/identify/preprocess.hpp"
 
+using namespace stickslip::dsp;
 using namespace stickslip::identify;
 using stickslip::io::Signal;
 

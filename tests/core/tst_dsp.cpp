@@ -1,0 +1,122 @@
+// core/dsp pieces that became public when they moved out of the run pipeline: the one median
+// and the one harmonic fit (the filters, Savitzky–Golay and resampling are in tst_preprocess).
+#include <QtTest>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "core/dsp/fourier.hpp"
+#include "core/dsp/stats.hpp"
+
+using namespace stickslip::dsp;
+
+namespace {
+const double kPi = std::numbers::pi;
+
+// The identify loop's stage fit as it was before it used dsp::harmonicFit (identify_prepare.cpp):
+// u ≈ c0 + c1 cos ωt + c2 sin ωt by 3 × 3 normal equations; rss of the residual.
+struct OldStageFit {
+    double c0, c1, c2, rss;
+};
+OldStageFit oldStageFit(const std::vector<double>& t, const std::vector<double>& u, double f) {
+    const double w = 2.0 * M_PI * f;
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < t.size(); ++i) {
+        const Eigen::Vector3d phi(1.0, std::cos(w * t[i]), std::sin(w * t[i]));
+        A += phi * phi.transpose();
+        b += phi * u[i];
+    }
+    const Eigen::Vector3d c = A.ldlt().solve(b);
+    double ss = 0;
+    for (size_t i = 0; i < t.size(); ++i) {
+        const double e = u[i] - (c[0] + c[1] * std::cos(w * t[i]) + c[2] * std::sin(w * t[i]));
+        ss += e * e;
+    }
+    return {c[0], c[1], c[2], ss};
+}
+
+// A deterministic, zero-mean-ish disturbance (no random generator: the same numbers everywhere).
+double wobble(size_t i) { return 1e-4 * std::sin(0.37 * static_cast<double>(i * i % 1013)); }
+}  // namespace
+
+class TstDsp : public QObject {
+    Q_OBJECT
+private slots:
+    void medianOddEvenEmpty() {
+        QCOMPARE(median({3.0, 1.0, 2.0}), 2.0);
+        QCOMPARE(median({5.0, -1.0, 4.0, 9.0, 0.5}), 4.0);
+        // Even count: the upper of the two middle values (an element, not their mean).
+        QCOMPARE(median({4.0, 1.0, 3.0, 2.0}), 3.0);
+        QCOMPARE(median({10.0, 20.0}), 20.0);
+        QCOMPARE(median({7.5}), 7.5);
+        // Empty: 0 (documented; no exception).
+        QCOMPARE(median({}), 0.0);
+        // The argument is taken by value: the caller's order is untouched.
+        const std::vector<double> v{9, 8, 7, 6, 5};
+        QCOMPARE(median(v), 7.0);
+        QCOMPARE(v, (std::vector<double>{9, 8, 7, 6, 5}));
+    }
+
+    // The unified fit gives the old identify stage fit's coefficients and residual on a drive
+    // with an offset, a phase and a disturbance (to rounding: the column order differs).
+    void harmonicFitAgreesWithOldStageFit() {
+        const double f = 2.5, dt = 1e-3;
+        std::vector<double> t, u;
+        for (size_t i = 0; i < 4000; ++i) {
+            t.push_back(0.2 + static_cast<double>(i) * dt);
+            u.push_back(3e-3 + 1.2e-3 * std::cos(2 * kPi * f * t.back() + 0.7) + 2e-5 * std::sin(6 * kPi * f * t.back()) +
+                        wobble(i) * 1e-2);
+        }
+        const OldStageFit old = oldStageFit(t, u, f);
+        const HarmonicFit fit = harmonicFit(t, u, f, 1, 0, t.size());
+        QCOMPARE(fit.order(), 1);
+        QCOMPARE(fit.samples, t.size());
+        QVERIFY(std::abs(fit.mean - old.c0) < 1e-15);
+        QVERIFY(std::abs(fit.cosine[0] - old.c1) < 1e-15);
+        QVERIFY(std::abs(fit.sine[0] - old.c2) < 1e-15);
+        QVERIFY(std::abs(fit.rss - old.rss) < 1e-9 * old.rss);
+        QVERIFY(std::abs(fit.omega - 2 * M_PI * f) < 1e-15);
+        QVERIFY(std::abs(fit.amplitude(1) - std::hypot(old.c1, old.c2)) < 1e-15);
+        QCOMPARE(fit.amplitude(2), 0.0);  // beyond the order
+        QCOMPARE(fit.amplitude(0), 0.0);
+    }
+
+    // Several harmonics are recovered exactly from a noise-free series, over a sub-range; the
+    // evaluated fourierFit is the fit's series at every sample and reports the same residual.
+    void harmonicFitRecoversSeries() {
+        const double f = 1.5;
+        std::vector<double> t, y;
+        for (size_t i = 0; i < 3000; ++i) {
+            t.push_back(static_cast<double>(i) / 500.0);
+            const double w = 2 * kPi * f * t.back();
+            y.push_back(0.5 + 2.0 * std::cos(w) - 1.0 * std::sin(w) + 0.25 * std::cos(3 * w) + 0.1 * std::sin(2 * w));
+        }
+        const HarmonicFit fit = harmonicFit(t, y, f, 3, 500, 2500);
+        QCOMPARE(fit.order(), 3);
+        QVERIFY(std::abs(fit.mean - 0.5) < 1e-10);
+        QVERIFY(std::abs(fit.cosine[0] - 2.0) < 1e-10 && std::abs(fit.sine[0] + 1.0) < 1e-10);
+        QVERIFY(std::abs(fit.cosine[1]) < 1e-10 && std::abs(fit.sine[1] - 0.1) < 1e-10);
+        QVERIFY(std::abs(fit.cosine[2] - 0.25) < 1e-10 && std::abs(fit.sine[2]) < 1e-10);
+        QVERIFY(fit.rss < 1e-18);
+        double rss = -1;
+        const std::vector<double> ev = fourierFit(t, y, f, 3, 500, 2500, &rss);
+        QCOMPARE(rss, fit.rss);
+        for (size_t i = 0; i < t.size(); i += 97) QCOMPARE(ev[i], fit.at(t[i]));
+        QVERIFY(std::abs(ev[10] - y[10]) < 1e-9);  // outside the fitted range too (exact series)
+    }
+
+    void refineFrequencyFindsTheDrive() {
+        std::vector<double> t, y;
+        for (size_t i = 0; i < 20000; ++i) {
+            t.push_back(static_cast<double>(i) * 1e-3);
+            y.push_back(std::sin(2 * kPi * 3.0012 * t.back()) + wobble(i));
+        }
+        QVERIFY(std::abs(refineFrequency(t, y, 3.0, 1) - 3.0012) < 1e-5);
+    }
+};
+
+QTEST_GUILESS_MAIN(TstDsp)
+#include "tst_dsp.moc"
