@@ -3,26 +3,22 @@
 // residual -> missing effect -> extended model loop, look at measured versus predicted,
 // residuals and diagnostics, and export the reports. It only builds requests and shows
 // outcomes: the computing happens on IdentifyWorker's thread.
+//
+// The panel is a thin container: the Data, Fit and Identify tabs and the plots are classes of
+// their own; the panel owns the worker and the last outcomes and wires the tabs to them.
 #pragma once
 
 #include <QStringList>
 #include <QWidget>
-#include <map>
 
+#include "identify_tables.hpp"
 #include "identify_worker.hpp"
 
-class QCheckBox;
-class SelfTestView;
-class QComboBox;
-class QDoubleSpinBox;
 class QLabel;
-class QListWidget;
-class QProgressBar;
 class QPushButton;
-class QSpinBox;
 class QTabWidget;
 class QTableWidget;
-class QTextBrowser;
+class SelfTestView;
 
 namespace stickslip::widgets {
 class SeriesPlot;
@@ -30,11 +26,10 @@ class SeriesPlot;
 
 namespace stickslip::gui {
 
-// "0.3012 ± 0.0021" (4 significant digits; "± n/a" when the standard error is not finite,
-// no "±" when it is 0, i.e. the parameter was fixed).
-QString formatEstimate(double value, double stderr_);
-// A dimensionless error as shown in the tables ("0.1608"; "–" when not finite).
-QString formatNrmse(double v);
+class IdentifyDataTab;
+class IdentifyFitTab;
+class IdentifyLoopTab;
+class IdentifyPlots;
 
 class IdentifyPanel : public QWidget {
     Q_OBJECT
@@ -75,20 +70,20 @@ public:
     // What the panel shows (tests read the same widgets the user sees).
     QString fitStatus() const;
     QString identifyStatus() const;
-    QTableWidget* fitParameterTable() const { return fitParams_; }
-    QTableWidget* fitRunTable() const { return fitRuns_; }
-    QTableWidget* beforeAfterTable() const { return beforeAfter_; }
-    QTableWidget* effectsTable() const { return effects_; }
-    QTableWidget* candidateTable() const { return candidates_; }
-    SelfTestView* selfTestView() const { return selfTest_; }
-    QLabel* unexplainedLabel() const { return unexplained_; }
+    QTableWidget* fitParameterTable() const;
+    QTableWidget* fitRunTable() const;
+    QTableWidget* beforeAfterTable() const;
+    QTableWidget* effectsTable() const;
+    QTableWidget* candidateTable() const;
+    SelfTestView* selfTestView() const;
+    QLabel* unexplainedLabel() const;
     QTabWidget* controlTabs() const { return controls_; }
-    QTabWidget* plotTabs() const { return plots_; }
-    widgets::SeriesPlot* overlayPlot() const { return overlayPlot_; }
-    QPushButton* fitRunButton() const { return fitRun_; }
-    QPushButton* fitCancelButton() const { return fitCancel_; }
-    QPushButton* identifyRunButton() const { return idRun_; }
-    QPushButton* identifyCancelButton() const { return idCancel_; }
+    QTabWidget* plotTabs() const;
+    widgets::SeriesPlot* overlayPlot() const;
+    QPushButton* fitRunButton() const;
+    QPushButton* fitCancelButton() const;
+    QPushButton* identifyRunButton() const;
+    QPushButton* identifyCancelButton() const;
 
     // Reports, written atomically (QSaveFile).
     bool exportFitReport(const QString& jsonPath, QString* error = nullptr) const;
@@ -109,75 +104,25 @@ protected:
     void dropEvent(QDropEvent* e) override;
 
 private:
-    QWidget* buildDataTab();
-    QWidget* buildFitTab();
-    QWidget* buildIdentifyTab();
-    QWidget* buildPlots();
-    void refreshRunTable();
-    void showMapping(int row);
+    void buildTabs();
+    void connectTabs();
+    void updateRunButtons();
     void setBusy(bool busy, bool fitJob);
     void onProgress(double fraction, const QString& stage);
-    // Shows a cancelled or failed job in its progress bar and status line; true when it succeeded.
-    bool showJobEnd(const QString& what, bool cancelled, bool ok, const QString& message, double elapsed_ms,
-                    QProgressBar* bar, QLabel* status);
     void onFitFinished(const FitOutcome& o);
     void onIdentifyFinished(const IdentifyOutcome& o);
-    void refreshPlots();
     void exportDialog();
-    enum class Shown { Nothing, Fit, Identify };
 
     IdentifyWorker* worker_ = nullptr;
-    MeasuredRuns runs_;
     FitOutcome lastFit_;
     IdentifyOutcome lastIdentify_;
-    Shown shown_ = Shown::Nothing;
     bool fitJob_ = true;
 
     QTabWidget* controls_ = nullptr;
-    QTabWidget* plots_ = nullptr;
-    // Data
-    QTableWidget* runTable_ = nullptr;
-    QComboBox* setupBox_ = nullptr;
-    QLabel* mapping_ = nullptr;
-    QLabel* dataSummary_ = nullptr;
-    QCheckBox *bandStop_ = nullptr, *lowPass_ = nullptr, *steadyTrim_ = nullptr;
-    QDoubleSpinBox* lowPassHz_ = nullptr;
-    // Fit
-    QComboBox* model_ = nullptr;
-    std::map<std::string, QCheckBox*> fitFree_;
-    QComboBox* loss_ = nullptr;
-    QDoubleSpinBox* lossScale_ = nullptr;
-    QCheckBox* split_ = nullptr;
-    QDoubleSpinBox* splitFraction_ = nullptr;
-    QSpinBox *multistarts_ = nullptr, *maxIterations_ = nullptr;
-    QCheckBox* jackknife_ = nullptr;
-    QPushButton *fitRun_ = nullptr, *fitCancel_ = nullptr;
-    QProgressBar* fitProgress_ = nullptr;
-    QLabel* fitStatus_ = nullptr;
-    QLabel* identifiability_ = nullptr;
-    QTableWidget* fitParams_ = nullptr;
-    QTableWidget* fitRuns_ = nullptr;
-    // Identify
-    std::map<std::string, QCheckBox*> idFree_;
-    QListWidget* candidateList_ = nullptr;
-    QSpinBox *maxEffects_ = nullptr, *idMultistarts_ = nullptr;
-    QDoubleSpinBox* bicMargin_ = nullptr;
-    QPushButton *idRun_ = nullptr, *idCancel_ = nullptr;
-    QProgressBar* idProgress_ = nullptr;
-    QLabel* idStatus_ = nullptr;
-    QTableWidget* beforeAfter_ = nullptr;
-    QTableWidget* effects_ = nullptr;
-    QTableWidget* candidates_ = nullptr;
-    SelfTestView* selfTest_ = nullptr;
-    QLabel* unexplained_ = nullptr;
-    // Plots
-    QComboBox* plotRun_ = nullptr;
-    QLabel* plotSource_ = nullptr;
-    widgets::SeriesPlot* overlayPlot_ = nullptr;
-    widgets::SeriesPlot* residualPlot_ = nullptr;
-    widgets::SeriesPlot* spectrumPlot_ = nullptr;
-    widgets::SeriesPlot* acfPlot_ = nullptr;
-    QTableWidget* correlations_ = nullptr;
+    IdentifyDataTab* data_ = nullptr;
+    IdentifyFitTab* fit_ = nullptr;
+    IdentifyLoopTab* loop_ = nullptr;
+    IdentifyPlots* plots_ = nullptr;
 };
 
 }  // namespace stickslip::gui

@@ -5,33 +5,27 @@
 // column, bad unit, manifest, settings) are shown in words with file:line:column and keep
 // OK disabled. The dataset is loaded on OK, off the GUI thread; a failure keeps the dialog
 // open with the error and nothing half-loaded.
+//
+// The dialog wires three pages (files, columns and units, cleaning; each owns its widgets and
+// background job) and the Qt-free checks of import_validation.hpp; it loads on OK.
 #pragma once
 
 #include <QDialog>
 #include <QFutureWatcher>
 #include <QStringList>
-#include <array>
-#include <map>
-#include <memory>
-#include <string>
 #include <vector>
 
+#include "cleaning_preview.hpp"
 #include "core/identify/preprocess.hpp"
-#include "core/io/csv_table.hpp"
 #include "core/io/dataset.hpp"
 #include "core/params.hpp"
+#include "file_preview.hpp"
+#include "import_validation.hpp"
 
-class QCheckBox;
 class QComboBox;
-class QDoubleSpinBox;
 class QLabel;
-class QLineEdit;
-class QListWidget;
-class QPlainTextEdit;
 class QPushButton;
-class QSpinBox;
 class QTableWidget;
-class QTimer;
 
 namespace stickslip::widgets {
 class SignalComparePlot;
@@ -39,40 +33,9 @@ class SignalComparePlot;
 
 namespace stickslip::gui {
 
-// What the dialog knows about one data file without loading it: header, the first rows for
-// the preview, or the error that stops it from loading (read off the GUI thread).
-struct FilePreview {
-    QString path;
-    bool ok = false;
-    io::CsvError error;                       // when !ok
-    std::vector<std::string> header;
-    std::vector<std::vector<double>> rows;    // first rows, row-major
-    std::vector<long> rowLines;               // source line of each preview row
-    std::vector<std::string> comments;
-    long headerLine = 0;
-    size_t rowCount = 0;
-    // Per column: median step (> 0 only if the column increases) and the first data row
-    // i >= 1 where it does not increase (0 if none) with the two values, to check a time column.
-    std::vector<double> medianStep;
-    std::vector<size_t> firstNonIncreasing;
-    std::vector<long> firstNonIncreasingLine;
-    std::vector<std::pair<double, double>> nonIncreasingValues;
-};
-// Reads `path` with the core CSV reader and keeps the first `maxRows` rows.
-FilePreview readFilePreview(const QString& path, int maxRows = 50);
-
-// The raw and cleaned version of one run for the comparison plot.
-struct CleaningPreview {
-    quint64 generation = 0;
-    QString file;
-    bool ok = false;
-    QString error;       // loading or cleaning failed (in words, file:line:column when known)
-    io::Run raw;         // loaded with the dialog's mapping and settings
-    identify::CleanRun clean;
-};
-// Loads `file` alone with `options` (run-sets that name other files are ignored) and cleans it.
-CleaningPreview computeCleaningPreview(const QString& file, const io::DatasetOptions& options,
-                                       const identify::PreprocessSettings& settings);
+class ImportCleaningPage;
+class ImportColumnsPage;
+class ImportFilesPage;
 
 class ImportDialog : public QDialog {
     Q_OBJECT
@@ -113,14 +76,14 @@ public:
     void setSelectedFile(int row);
     void setPlotSignal(io::Signal s);
 
-    QComboBox* columnCombo(io::Signal s) const { return columnCombos_[static_cast<size_t>(s)]; }
-    QComboBox* unitCombo(io::Signal s) const { return unitCombos_[static_cast<size_t>(s)]; }
-    QTableWidget* previewTable() const { return preview_; }
-    widgets::SignalComparePlot* comparePlot() const { return plot_; }
+    QComboBox* columnCombo(io::Signal s) const;
+    QComboBox* unitCombo(io::Signal s) const;
+    QTableWidget* previewTable() const;
+    widgets::SignalComparePlot* comparePlot() const;
     QPushButton* okButton() const { return okButton_; }
     QLabel* messageLabel() const { return message_; }
     // The last finished cleaning preview (for the selected file).
-    const CleaningPreview& cleaningPreview() const { return cleaning_; }
+    const CleaningPreview& cleaningPreview() const;
 
 public slots:
     void accept() override;   // starts loading; closes only when it succeeds
@@ -132,73 +95,25 @@ signals:
 
 private:
     void buildUi();
-    QWidget* buildFilesPanel();
-    QWidget* buildColumnsPage();
-    QWidget* buildCleaningPage();
-    void addFilesClicked();
-    void removeFileClicked();
-    void browseManifest();
-    void scanFiles();
+    void connectPages();
+    void offerManifestNextTo(const QStringList& files);
     void onScanFinished();
-    void populateColumnCombos();
     void updatePreviewTable();
     void revalidate();
-    void scheduleCleaning();
-    void startCleaning();
-    void onCleaningFinished();
-    void showCleaning();
+    void showMessage(const QString& err, bool scanning);
     void onLoadFinished();
     void settingsChanged();
-    void columnChosen(io::Signal s);
-    void updateEnabledStates();
     void updateSetupHint();
-    QString validateFilesAndMapping() const;
-    QString validateManifestAndRunSets();
-    QString validateCleaning() const;
+    QString validationError();
     QString summaryText() const;
     QStringList columnUnion() const;
-    double timeScale() const;
-    const FilePreview* selectedPreview() const;
-    io::ColumnMapping mapping(QString* error) const;
-    QStringList runSetLines() const;
 
-    // files
-    QListWidget* fileList_ = nullptr;
-    QPushButton *addButton_ = nullptr, *removeButton_ = nullptr;
-    QLineEdit* manifest_ = nullptr;
-    QPlainTextEdit* runSets_ = nullptr;
-    QComboBox* setup_ = nullptr;
-    QLabel* setupHint_ = nullptr;
-    // columns
-    std::array<QComboBox*, io::kSignalCount> columnCombos_{};
-    std::array<QComboBox*, io::kSignalCount> unitCombos_{};
-    QTableWidget* preview_ = nullptr;
-    QLabel* previewCaption_ = nullptr;
-    // cleaning
-    QCheckBox *bandStop_ = nullptr, *lowPass_ = nullptr, *steadyTrim_ = nullptr, *resample_ = nullptr;
-    QDoubleSpinBox *bandCenter_ = nullptr, *bandWidth_ = nullptr, *lowPassHz_ = nullptr;
-    QSpinBox *bandOrder_ = nullptr, *lowPassOrder_ = nullptr, *sgHalf_ = nullptr, *sgOrder_ = nullptr,
-             *stageHarmonics_ = nullptr;
-    QDoubleSpinBox *trimStart_ = nullptr, *trimEnd_ = nullptr, *trimFraction_ = nullptr;
-    QComboBox* plotSignal_ = nullptr;
-    QCheckBox* detail_ = nullptr;
-    QLabel* cleaningStatus_ = nullptr;
-    widgets::SignalComparePlot* plot_ = nullptr;
-    // bottom
+    ImportFilesPage* filesPage_ = nullptr;
+    ImportColumnsPage* columnsPage_ = nullptr;
+    ImportCleaningPage* cleaningPage_ = nullptr;
     QLabel* message_ = nullptr;
     QPushButton* okButton_ = nullptr;
 
-    // state
-    std::map<QString, FilePreview> previews_;   // by path
-    QFutureWatcher<std::vector<FilePreview>> scanWatcher_;
-    bool scanning_ = false;
-    bool rescanPending_ = false;
-    QTimer* cleaningTimer_ = nullptr;
-    QFutureWatcher<CleaningPreview> cleaningWatcher_;
-    quint64 cleaningGeneration_ = 0;
-    bool cleaningRunning_ = false;
-    bool cleaningPending_ = false;
-    CleaningPreview cleaning_;
     struct LoadResult {
         bool ok = false;
         io::Dataset dataset;
@@ -208,15 +123,9 @@ private:
     bool loading_ = false;
     bool valid_ = false;
     QString error_;
-    io::Dataset dataset_;
-    bool populating_ = false;
-    std::array<QString, io::kSignalCount> chosen_;   // null: default; "": none; else the column
     QString loadError_;
-    // manifest read once per path
-    QString manifestReadPath_;
-    bool manifestOk_ = false;
-    io::Manifest manifestData_;
-    io::DatasetError manifestError_;
+    io::Dataset dataset_;
+    ManifestCheck manifestCheck_;
 };
 
 }  // namespace stickslip::gui
