@@ -2,16 +2,11 @@
 
 #include <algorithm>
 
+#include "core/dsp/stats.hpp"
+
 namespace stickslip::gui {
 
 namespace {
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-    std::nth_element(v.begin(), mid, v.end());
-    return *mid;
-}
 
 // The time check needs, per column, where it first fails to increase, and the sampling
 // check its median step: both from the whole file, while only the first rows are kept.
@@ -33,7 +28,7 @@ void scanMonotony(const io::CsvTable& t, FilePreview& p) {
         if (p.firstNonIncreasing[j] == 0 && c.size() > 1) {
             std::vector<double> d(c.size() - 1);
             for (size_t i = 1; i < c.size(); ++i) d[i - 1] = c[i] - c[i - 1];
-            p.medianStep[j] = median(std::move(d));
+            p.medianStep[j] = dsp::median(std::move(d));
         }
     }
 }

@@ -1,5 +1,7 @@
 #include "identify_fit_tab.hpp"
 
+#include "core/friction/friction_law.hpp"
+
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -24,7 +26,22 @@ using namespace stickslip::identify;
 
 namespace {
 
-const char* kFitParams[] = {"mu", "C1", "eta", "Dc", "vc", "epsT", "r", "m", "zeta"};
+// The free-parameter check boxes: every law key with a fit range (param_table), m* and ζ.
+std::vector<std::string> fitParams() {
+    std::vector<std::string> out;
+    for (const ParamDef& d : paramTable())
+        if (d.group == ParamGroup::FrictionLaw && d.fit.valid()) out.emplace_back(d.key);
+    out.emplace_back("m");
+    out.emplace_back("zeta");
+    return out;
+}
+
+// The tables' law columns: one per registered law, in registry order.
+QStringList lawHeaders() {
+    QStringList h;
+    for (LawKind law : allLaws()) h << lawName(law);
+    return h;
+}
 
 }  // namespace
 
@@ -41,14 +58,14 @@ IdentifyFitTab::IdentifyFitTab(QWidget* parent) : IdentifyJobTab(parent) {
     runButton()->setDefault(true);
     v->addWidget(statusLabel());
 
-    params_ = makeTable({tr("Parameter"), tr("rate-state"), tr("Coulomb")}, w);
+    params_ = makeTable(QStringList{tr("Parameter")} + lawHeaders(), w);
     fitHeight(params_, 5);
     v->addWidget(new QLabel(tr("<b>Parameters</b> (value ± 1σ standard error)"), w));
     v->addWidget(params_);
     identifiability_ = new QLabel(w);
     identifiability_->setWordWrap(true);
     v->addWidget(identifiability_);
-    runs_ = makeTable({tr("Run"), tr("Role"), tr("RMS [N]"), tr("rate-state"), tr("Coulomb")}, w);
+    runs_ = makeTable(QStringList{tr("Run"), tr("Role"), tr("RMS [N]")} + lawHeaders(), w);
     fitHeight(runs_, 3);
     v->addWidget(new QLabel(tr("<b>NRMSE per run</b> (RMS error / RMS measured)"), w));
     v->addWidget(runs_);
@@ -58,19 +75,18 @@ IdentifyFitTab::IdentifyFitTab(QWidget* parent) : IdentifyJobTab(parent) {
 
 void IdentifyFitTab::buildSettings(QFormLayout* form) {
     model_ = new QComboBox(this);
-    model_->addItem(tr("rate-state"), "rate-state");
-    model_->addItem(tr("Coulomb"), "coulomb");
+    for (LawKind law : allLaws()) model_->addItem(lawName(law), QString::fromUtf8(toString(law)));
     model_->addItem(tr("both, side by side"), "both");
     form->addRow(tr("Model"), model_);
     auto* freeBox = new QWidget(this);
     auto* fg = new QGridLayout(freeBox);
     fg->setContentsMargins(0, 0, 0, 0);
     int k = 0;
-    for (const char* n : kFitParams) {
+    for (const std::string& n : fitParams()) {
         auto* c = new QCheckBox(paramTitle(n).section(' ', 0, 0), freeBox);
         c->setToolTip(tr("fit %1 (else held at its start value)").arg(paramTitle(n)));
         free_[n] = c;
-        fg->addWidget(c, k / 3, k % 3);  // μ C1 η / D_c v_c ε_T / r m* ζ: fits the panel's width
+        fg->addWidget(c, k / 3, k % 3);  // three per row: fits the panel's width
         ++k;
     }
     setFreeParameters({"mu", "eta", "Dc", "vc", "epsT"});
@@ -145,11 +161,11 @@ void IdentifyFitTab::setTimeSplit(double fraction) {
 
 void IdentifyFitTab::fillRequest(FitRequest& r) const {
     const QString m = model_->currentData().toString();
-    r.laws = m == "coulomb" ? std::vector<LawKind>{LawKind::Coulomb}
-             : m == "both"  ? std::vector<LawKind>{LawKind::RateState, LawKind::Coulomb}
-                            : std::vector<LawKind>{LawKind::RateState};
+    r.laws = {LawKind::RateState};
+    if (m == "both") r.laws = {LawKind::RateState, LawKind::Coulomb};
+    else parseLawKind(m.toStdString(), r.laws[0]);
     r.settings.free.clear();
-    for (const char* n : kFitParams)
+    for (const std::string& n : fitParams())
         if (free_.at(n)->isChecked()) r.settings.free.push_back(n);
     r.settings.loss = static_cast<LossKind>(loss_->currentData().toInt());
     r.settings.lossScale = lossScale_->value();
@@ -185,9 +201,9 @@ void IdentifyFitTab::showParameters(const FitOutcome& o) {
     for (size_t i = 0; i < names.size(); ++i) {
         const int row = static_cast<int>(i);
         setCell(params_, row, 0, paramTitle(names[i]));
-        for (int col = 1; col <= 2; ++col) setCell(params_, row, col, QStringLiteral(""));
+        for (int col = 1; col <= lawCount(); ++col) setCell(params_, row, col, QStringLiteral(""));
         for (const LawFit& lf : o.fits) {
-            const int col = lf.law == LawKind::Coulomb ? 2 : 1;
+            const int col = 1 + static_cast<int>(lf.law);
             const auto& f = lf.fit.fit;
             for (size_t j = 0; j < f.names.size(); ++j) {
                 if (f.names[j] != names[i]) continue;
@@ -196,8 +212,9 @@ void IdentifyFitTab::showParameters(const FitOutcome& o) {
             }
         }
     }
-    params_->setColumnHidden(1, std::none_of(o.fits.begin(), o.fits.end(), [](const LawFit& l) { return l.law == LawKind::RateState; }));
-    params_->setColumnHidden(2, std::none_of(o.fits.begin(), o.fits.end(), [](const LawFit& l) { return l.law == LawKind::Coulomb; }));
+    for (LawKind law : allLaws())
+        params_->setColumnHidden(1 + static_cast<int>(law),
+                                 std::none_of(o.fits.begin(), o.fits.end(), [law](const LawFit& l) { return l.law == law; }));
     params_->resizeColumnsToContents();
     params_->horizontalHeader()->setStretchLastSection(true);
     fitHeight(params_, 5);
@@ -235,17 +252,15 @@ void IdentifyFitTab::showRuns(const FitOutcome& o) {
         setCell(runs_, row, 0, QString::fromStdString(QFileInfo(QString::fromStdString(first[i].file)).fileName().toStdString()));
         setCell(runs_, row, 1, QString::fromStdString(first[i].role));
         setCell(runs_, row, 2, std::isfinite(first[i].rms_N) ? QString::number(first[i].rms_N, 'g', 4) : QStringLiteral("–"));
-        setCell(runs_, row, 3, QString());
-        setCell(runs_, row, 4, QString());
+        for (int col = 3; col < 3 + lawCount(); ++col) setCell(runs_, row, col, QString());
         for (const LawFit& lf : o.fits) {
             if (i >= lf.fit.runs.size()) continue;
             const RunScore& r = lf.fit.runs[i];
-            setCell(runs_, row, lf.law == LawKind::Coulomb ? 4 : 3, r.ok ? formatNrmse(r.nrmse) : tr("failed"),
+            setCell(runs_, row, 3 + static_cast<int>(lf.law), r.ok ? formatNrmse(r.nrmse) : tr("failed"),
                     QString::fromStdString(r.message));
         }
     }
-    runs_->setColumnHidden(3, params_->isColumnHidden(1));
-    runs_->setColumnHidden(4, params_->isColumnHidden(2));
+    for (int k = 0; k < lawCount(); ++k) runs_->setColumnHidden(3 + k, params_->isColumnHidden(1 + k));
     runs_->resizeColumnsToContents();
     fitHeight(runs_, 3);
 }

@@ -105,16 +105,18 @@ const Diagnostics* IdentifyPlots::fitSeries(int k, Series& over, Series& res) {
     source_->setText(tr("Fit: %1").arg(fit_->fits.size() > 1 ? tr("rate-state (solid) and Coulomb (dashed)")
                                                               : lawName(fit_->fits.front().law)));
     bool first = true;
+    const LawKind primary = fit_->fits.front().law;  // solid; a second law side by side dashed
     for (const LawFit& lf : fit_->fits) {
         if (k >= static_cast<int>(lf.overlays.size())) continue;
         const RunOverlay& o = lf.overlays[static_cast<size_t>(k)];
         if (first) over.push_back({tr("measured"), o.t_s, o.measured_N, kMeasured, false, true, 1.0});
         first = false;
-        const QColor c = lf.law == LawKind::Coulomb ? kCoulomb : kRate;
-        over.push_back({tr("%1 predicted").arg(lawName(lf.law)), o.t_s, o.predicted_N, c, lf.law == LawKind::Coulomb, false, 1.4});
+        const QColor c = lawColor(lf.law);
+        const bool dashed = lf.law != primary;
+        over.push_back({tr("%1 predicted").arg(lawName(lf.law)), o.t_s, o.predicted_N, c, dashed, false, 1.4});
         std::vector<double> r(o.t_s.size());
         for (size_t j = 0; j < r.size(); ++j) r[j] = o.measured_N[j] - o.predicted_N[j];
-        res.push_back({lawName(lf.law), o.t_s, r, c, lf.law == LawKind::Coulomb, false, 1.0});
+        res.push_back({lawName(lf.law), o.t_s, r, c, dashed, false, 1.0});
     }
     return fit_->fits.front().diagnostics.spectrum.frequency_Hz.empty() ? nullptr : &fit_->fits.front().diagnostics;
 }

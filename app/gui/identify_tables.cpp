@@ -1,5 +1,7 @@
 #include "identify_tables.hpp"
 
+#include "core/friction/friction_law.hpp"
+
 #include <QHeaderView>
 #include <QScrollArea>
 #include <QTableWidget>
@@ -26,7 +28,12 @@ QString paramTitle(const std::string& n) {
     return it != t.end() ? it->second : QString::fromStdString(n);
 }
 
-QString lawName(LawKind law) { return law == LawKind::Coulomb ? QStringLiteral("Coulomb") : QStringLiteral("rate-state"); }
+QString lawName(LawKind law) { return QString::fromUtf8(lawInfo(law).label); }
+
+QColor lawColor(LawKind law) {
+    static const QColor c[] = {kRate, kCoulomb, QColor(44, 160, 44), QColor(148, 103, 189)};
+    return c[static_cast<int>(law) % 4];
+}
 
 QTableWidget* makeTable(const QStringList& headers, QWidget* parent) {
     auto* t = new QTableWidget(0, headers.size(), parent);

@@ -36,5 +36,7 @@ QWidget* scrolled(QWidget* content);
 // Curve colours, the same in every plot.
 inline const QColor kMeasured(40, 40, 40), kRate(31, 119, 180), kCoulomb(255, 127, 14), kBefore(214, 39, 40),
     kAfter(44, 160, 44);
+// A law's colour in the Identify plots (its registry slot; rate-state kRate, Coulomb kCoulomb).
+QColor lawColor(LawKind law);
 
 }  // namespace stickslip::gui
