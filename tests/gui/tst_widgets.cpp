@@ -89,12 +89,7 @@ private slots:
     void bifurcationAppendsBranches();
     void spectrumIsLogScaled();
     void periodicityMapShowsClasses();
-    void exportEachFormat();
-    void exportMultiPanel();
-    void exportErrors();
     void rigViewDrivesCursor();
-    void decimationKeepsEveryColumnExtent();
-    void decimationOfLoopsStaysWithinTolerance();
     void hiddenViewUpdatesWhenShown();
 };
 
@@ -451,90 +446,6 @@ void TestWidgets::periodicityMapShowsClasses() {
     QVERIFY(text.contains("class,2,4,5"));   // cell (A = 2 mm, f = 4 Hz) is period 5
 }
 
-void TestWidgets::exportEachFormat() {
-    const RunResult run = shortRun(LawKind::RateState);
-    TimeSeriesPlot w;
-    w.setChannels(channelBit(Channel::Slider) | channelBit(Channel::FrictionRatio));
-    w.setRun(run, 1.0 / 3.0);
-    QTemporaryDir dir;
-    QVERIFY(dir.isValid());
-    QString error;
-    QVERIFY2(w.exportTo(dir.filePath("p.png"), &error), qPrintable(error));
-    QVERIFY2(w.exportTo(dir.filePath("p.svg"), &error), qPrintable(error));
-    QVERIFY2(w.exportTo(dir.filePath("p.pdf"), &error), qPrintable(error));
-    QVERIFY2(w.exportTo(dir.filePath("p.csv"), &error), qPrintable(error));
-    QVERIFY(readAll(dir.filePath("p.png")).startsWith("\x89PNG"));
-    const QByteArray svg = readAll(dir.filePath("p.svg"));
-    QVERIFY(svg.startsWith("<?xml") || svg.startsWith("<svg"));
-    QVERIFY(svg.contains("<svg"));
-    QVERIFY(readAll(dir.filePath("p.pdf")).startsWith("%PDF"));
-    // The PNG has the requested size (160 x 100 mm at 110 dpi) and is not blank.
-    QImage img(dir.filePath("p.png"));
-    QCOMPARE(img.width(), qRound(160 / 25.4 * 110));
-    QCOMPARE(img.height(), qRound(100 / 25.4 * 110));
-    // No temp files left behind (QSaveFile renamed them).
-    QCOMPARE(QDir(dir.path()).entryList(QDir::Files).size(), 4);
-
-    // CSV: every plotted sample, values read back equal to the curve data.
-    io::CsvTable table;
-    io::CsvError err;
-    const QByteArray csv = readAll(dir.filePath("p.csv"));
-    QVERIFY(csv.contains("series,time t [s],slider x [mm]"));
-    // Strip the series column and re-parse the numbers per line.
-    const QList<QByteArray> lines = csv.split('\n');
-    int slider = 0, ratio = 0;
-    for (const QByteArray& line : lines) {
-        const QList<QByteArray> f = line.split(',');
-        if (f.size() != 3) continue;
-        if (f[0] == "rate-state: slider x") {
-            QCOMPARE(f[1].toDouble(), run.samples[slider].t_s);
-            QCOMPARE(f[2].toDouble(), run.samples[slider].slider_m * 1e3);
-            ++slider;
-        } else if (f[0].startsWith("rate-state: F/t_N")) {
-            QCOMPARE(f[2].toDouble(), run.samples[ratio].ratio);
-            ++ratio;
-        }
-    }
-    QCOMPARE(size_t(slider), run.samples.size());
-    QCOMPARE(size_t(ratio), run.samples.size());
-}
-
-void TestWidgets::exportMultiPanel() {
-    PoincarePlot a;
-    a.setSection(std::vector<double>{1e-3, 2e-3}, std::vector<double>{0.1, 0.2});
-    SpectrumPlot b;
-    b.setSpectrum({1, 2, 3}, {1, 2, 3});
-    QTemporaryDir dir;
-    ExportOptions eo;
-    eo.size_mm = QSizeF(200, 80);
-    QString error;
-    QVERIFY2(exportPlots({a.plot(), b.plot()}, 2, dir.filePath("two.png"), &error, eo), qPrintable(error));
-    QImage img(dir.filePath("two.png"));
-    QCOMPARE(img.width(), qRound(200 / 25.4 * 110));
-    QVERIFY2(exportPlots({a.plot(), b.plot()}, 1, dir.filePath("two.pdf"), &error, eo), qPrintable(error));
-    QVERIFY(readAll(dir.filePath("two.pdf")).startsWith("%PDF"));
-}
-
-void TestWidgets::exportErrors() {
-    PoincarePlot a;
-    QTemporaryDir dir;
-    QString error;
-    QVERIFY(!a.exportTo(dir.filePath("p.bmpx"), &error));
-    QVERIFY(error.contains("bmpx"));
-    QVERIFY(!a.exportTo(dir.filePath("no/such/dir/p.png"), &error));
-    QVERIFY(error.contains("p.png"));
-    QVERIFY(!exportPlot(nullptr, dir.filePath("x.png"), &error));
-    // A failed export leaves an existing target untouched.
-    const QString target = dir.filePath("keep.xyz");
-    {
-        QFile f(target);
-        QVERIFY(f.open(QIODevice::WriteOnly));
-        f.write("old");
-    }
-    QVERIFY(!a.exportTo(target, &error));
-    QCOMPARE(readAll(target), QByteArray("old"));
-}
-
 void TestWidgets::rigViewDrivesCursor() {
     const SimParams p = shortParams(LawKind::RateState);
     const RunResult run = simulate(p);
@@ -596,94 +507,6 @@ void TestWidgets::rigViewDrivesCursor() {
     QVERIFY(narrow > 20);
     rig.clear();
     QVERIFY(!rig.currentSample(s));
-}
-
-namespace {
-
-// x → [0, width) px, y → [height, 0) px over the data's range.
-void maps(const QVector<QPointF>& pts, double width, double height, QwtScaleMap& xm, QwtScaleMap& ym) {
-    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-    for (const QPointF& p : pts) {
-        x0 = std::min(x0, p.x());
-        x1 = std::max(x1, p.x());
-        y0 = std::min(y0, p.y());
-        y1 = std::max(y1, p.y());
-    }
-    xm.setScaleInterval(x0, x1);
-    xm.setPaintInterval(0, width);
-    ym.setScaleInterval(y0, y1);
-    ym.setPaintInterval(height, 0);
-}
-
-}  // namespace
-
-void TestWidgets::decimationKeepsEveryColumnExtent() {
-    // A noisy fast oscillation, ~27 samples per pixel column, plus a spike in one sample.
-    QVector<QPointF> pts;
-    const int n = 20000;
-    for (int i = 0; i < n; ++i) {
-        const double t = i * 1e-4;
-        pts.append(QPointF(t, std::sin(2 * M_PI * 37 * t) + 0.3 * std::sin(2 * M_PI * 911 * t) + (i == 12345 ? 5.0 : 0.0)));
-    }
-    DecimatedCurve c("x");
-    c.setMonotonicX(true);
-    c.setSamples(pts);
-    QCOMPARE(c.dataSize(), size_t(n));   // the curve keeps every sample (export, tests)
-    QwtScaleMap xm, ym;
-    maps(pts, 733, 300, xm, ym);
-    const QPolygonF poly = c.reducedPolyline(xm, ym, 0, n - 1);
-    QVERIFY2(poly.size() <= 4 * 734 && poly.size() > 734, qPrintable(QString::number(poly.size())));
-    QCOMPARE(poly.front(), QPointF(xm.transform(pts.front().x()), ym.transform(pts.front().y())));
-    QCOMPARE(poly.back(), QPointF(xm.transform(pts.back().x()), ym.transform(pts.back().y())));
-    // Per pixel column, the drawn points span exactly the full data's vertical extent.
-    std::map<int, std::pair<double, double>> full, drawn;
-    auto add = [](std::map<int, std::pair<double, double>>& m, double x, double y) {
-        const int col = static_cast<int>(std::floor(x));
-        auto it = m.find(col);
-        if (it == m.end()) m[col] = {y, y};
-        else it->second = {std::min(it->second.first, y), std::max(it->second.second, y)};
-    };
-    for (const QPointF& p : pts) add(full, xm.transform(p.x()), ym.transform(p.y()));
-    for (const QPointF& p : poly) add(drawn, p.x(), p.y());
-    QCOMPARE(drawn.size(), full.size());
-    for (const auto& [col, ext] : full) {
-        QCOMPARE(drawn[col].first, ext.first);
-        QCOMPARE(drawn[col].second, ext.second);
-    }
-    // Drawn in order of x (the polyline never goes back).
-    for (int i = 1; i < poly.size(); ++i) QVERIFY(poly[i].x() >= poly[i - 1].x());
-    // Zoomed in: only the visible columns (plus one sample each side) are drawn.
-    QwtScaleMap zx = xm;
-    zx.setScaleInterval(0.5, 0.6);
-    const QPolygonF zoomed = c.reducedPolyline(zx, ym, 0, n - 1);
-    QVERIFY(zoomed.size() <= 4 * 734 + 8);
-    QVERIFY(zoomed.front().x() <= 0 && zoomed.front().x() > -733.0 * 1e-4 / 0.1 - 1e-9);
-    QVERIFY(zoomed.back().x() >= 733 && zoomed.back().x() < 733 + 733.0 * 1e-4 / 0.1 + 1e-9);
-}
-
-void TestWidgets::decimationOfLoopsStaysWithinTolerance() {
-    // Twenty retraced loops (not monotonic in x), dense enough for the weeding to act.
-    QVector<QPointF> pts;
-    for (int i = 0; i < 200000; ++i) {
-        const double th = 2 * M_PI * 20 * i / 200000.0;
-        pts.append(QPointF(std::cos(th) * (1 + 0.01 * std::sin(13 * th)), std::sin(2 * th)));
-    }
-    DecimatedCurve c("loop");
-    c.setSamples(pts);
-    QwtScaleMap xm, ym;
-    maps(pts, 300, 200, xm, ym);
-    const QPolygonF poly = c.reducedPolyline(xm, ym, 0, pts.size() - 1);
-    QVERIFY2(poly.size() < pts.size() / 2, qPrintable(QString::number(poly.size())));
-    // Every sample lies within the tolerance (per axis) of the last vertex drawn before it,
-    // vertices are samples in order, and the first and last samples are drawn.
-    int v = 0;
-    for (const QPointF& p : pts) {
-        const QPointF d(xm.transform(p.x()), ym.transform(p.y()));
-        if (v + 1 < poly.size() && poly[v + 1] == d) ++v;
-        QVERIFY(std::abs(d.x() - poly[v].x()) <= DecimatedCurve::tolerance_px + 1e-12);
-        QVERIFY(std::abs(d.y() - poly[v].y()) <= DecimatedCurve::tolerance_px + 1e-12);
-    }
-    QCOMPARE(v, poly.size() - 1);
 }
 
 void TestWidgets::hiddenViewUpdatesWhenShown() {
