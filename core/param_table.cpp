@@ -9,6 +9,7 @@
 namespace stickslip {
 
 std::string ParamIssue::message() const {
+    if (!detail.empty()) return detail;
     std::ostringstream s;
     s.precision(6);
     s << field << " = " << value << " is out of range: must be " << allowed;

@@ -14,12 +14,18 @@
 
 namespace stickslip {
 
-// One violated constraint: which field, what value it had, what is allowed.
+// One violated constraint: which field, what value it had, what is allowed. The one issue
+// type of every validate() in core (parameters, options, settings, slip histories).
 struct ParamIssue {
+    ParamIssue() = default;
+    ParamIssue(std::string f, double v, std::string a, std::string d = {})
+        : field(std::move(f)), value(v), allowed(std::move(a)), detail(std::move(d)) {}
     std::string field;    // e.g. "tN"
     double value = 0.0;   // offending value
     std::string allowed;  // e.g. "> 0"
-    std::string message() const;  // "tN = -1 is out of range: must be > 0"
+    std::string detail;   // a problem that is not a value out of range ("time does not increase at …")
+    std::string message() const;  // detail if given, else "tN = -1 is out of range: must be > 0"
+    static ParamIssue note(std::string field, std::string detail) { return {std::move(field), 0.0, {}, std::move(detail)}; }
 };
 
 using ParamIssues = std::vector<ParamIssue>;

@@ -21,7 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         FUZZ_CHECK(err.file == "run.csv", "error names '%s', not the file", err.file.c_str());
         return 0;
     }
-    FUZZ_CHECK(h.check().empty(), "accepted history fails check(): %s", h.check().c_str());
+    FUZZ_CHECK(h.validate().empty(), "accepted history fails validate(): %s", formatIssues(h.validate()).c_str());
     FUZZ_CHECK(h.t_s.size() == t.rows(), "%zu samples from %zu rows", h.t_s.size(), t.rows());
     for (size_t i = 0; i < h.t_s.size(); ++i) {
         FUZZ_CHECK(std::isfinite(h.t_s[i]) && std::isfinite(h.slip_m[i]), "non-finite sample %zu", i);

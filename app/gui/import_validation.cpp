@@ -156,9 +156,11 @@ std::string validateCleaning(const Paths& files, const PreviewMap& previews, con
         fsMin = fsMin > 0 ? std::min(fsMin, fs) : fs;
     }
     if (!(fsMin > 0)) return {};
-    const std::vector<std::string> bad = settings.validate(fsMin);
+    const ParamIssues bad = settings.validate(fsMin);
     if (bad.empty()) return {};
-    return "Cleaning (sampling at " + number6(fsMin) + " Hz): " + joined(bad, "; ");
+    std::vector<std::string> lines;
+    for (const ParamIssue& i : bad) lines.push_back(i.message());
+    return "Cleaning (sampling at " + number6(fsMin) + " Hz): " + joined(lines, "; ");
 }
 
 SetupKind automaticSetup(const Paths& files, const PreviewMap& previews, const std::string& sliderColumn) {

@@ -83,7 +83,7 @@ bool SelfTestView::apply(IdentifyOptions& o, QString& why) const {
         }
         o.selfTest.levels.push_back(l);
     }
-    const std::string err = o.selfTest.validate();
+    const std::string err = formatIssues(o.selfTest.validate());
     if (!err.empty()) {
         why = QString::fromStdString(err);
         return false;

@@ -232,37 +232,38 @@ std::string fmt(double v) {
 
 }  // namespace
 
-std::vector<std::string> FitProblem::validate() const {
-    std::vector<std::string> issues;
-    if (!residuals && !batchResiduals) issues.push_back("residual callback is missing");
-    if (residualCount == 0) issues.push_back("residualCount = 0 is out of range: must be > 0");
+ParamIssues FitProblem::validate() const {
+    ParamIssues issues;
+    auto note = [&](std::string text) { issues.push_back(ParamIssue::note("fit", std::move(text))); };
+    if (!residuals && !batchResiduals) note("residual callback is missing");
+    if (residualCount == 0) note("residualCount = 0 is out of range: must be > 0");
     size_t nFree = 0;
     for (const FitParameter& p : parameters) {
         if (!std::isfinite(p.lower) || !std::isfinite(p.upper) || !(p.upper > p.lower))
-            issues.push_back(p.name + ": bounds [" + fmt(p.lower) + ", " + fmt(p.upper) + "] must be finite with lower < upper");
+            note(p.name + ": bounds [" + fmt(p.lower) + ", " + fmt(p.upper) + "] must be finite with lower < upper");
         if (p.scale == ParamScale::Log && !(p.lower > 0.0))
-            issues.push_back(p.name + ": lower = " + fmt(p.lower) + " is out of range: log scale needs lower > 0");
+            note(p.name + ": lower = " + fmt(p.lower) + " is out of range: log scale needs lower > 0");
         if (!(p.value >= p.lower && p.value <= p.upper))
-            issues.push_back(p.name + " = " + fmt(p.value) + " is out of range: must be in [" + fmt(p.lower) + ", " +
+            note(p.name + " = " + fmt(p.value) + " is out of range: must be in [" + fmt(p.lower) + ", " +
                              fmt(p.upper) + "]");
         if (p.free) ++nFree;
     }
-    if (nFree == 0) issues.push_back("no free parameter");
+    if (nFree == 0) note("no free parameter");
     for (const ParameterScan& sc : scans) {
         bool isFree = false;
         for (const FitParameter& p : parameters) isFree = isFree || (p.free && p.name == sc.name);
-        if (!isFree) issues.push_back("scan of '" + sc.name + "': not a free parameter");
+        if (!isFree) note("scan of '" + sc.name + "': not a free parameter");
         for (double v : sc.values)
-            if (!std::isfinite(v)) issues.push_back("scan of '" + sc.name + "': value " + fmt(v) + " is not finite");
+            if (!std::isfinite(v)) note("scan of '" + sc.name + "': value " + fmt(v) + " is not finite");
     }
     if (residualCount > 0 && nFree >= residualCount)
-        issues.push_back("residualCount = " + std::to_string(residualCount) + " must exceed the free parameters (" +
+        note("residualCount = " + std::to_string(residualCount) + " must exceed the free parameters (" +
                          std::to_string(nFree) + ")");
-    if (agreeingStarts < 0) issues.push_back("agreeingStarts = " + std::to_string(agreeingStarts) + " is out of range: must be >= 0");
-    if (!(sameCostTolerance >= 0.0)) issues.push_back("sameCostTolerance = " + fmt(sameCostTolerance) + " is out of range: must be >= 0");
-    if (multistarts < 1) issues.push_back("multistarts = " + std::to_string(multistarts) + " is out of range: must be >= 1");
-    if (maxIterations < 1) issues.push_back("maxIterations must be >= 1");
-    if (!(relativeStep > 0.0 && relativeStep < 0.1)) issues.push_back("relativeStep = " + fmt(relativeStep) + " must be in (0, 0.1)");
+    if (agreeingStarts < 0) note("agreeingStarts = " + std::to_string(agreeingStarts) + " is out of range: must be >= 0");
+    if (!(sameCostTolerance >= 0.0)) note("sameCostTolerance = " + fmt(sameCostTolerance) + " is out of range: must be >= 0");
+    if (multistarts < 1) note("multistarts = " + std::to_string(multistarts) + " is out of range: must be >= 1");
+    if (maxIterations < 1) note("maxIterations must be >= 1");
+    if (!(relativeStep > 0.0 && relativeStep < 0.1)) note("relativeStep = " + fmt(relativeStep) + " must be in (0, 0.1)");
     return issues;
 }
 
@@ -288,9 +289,9 @@ FitResult fitLeastSquares(const FitProblem& prob) {
         res.stderrs.push_back(0.0);
     }
     res.residualCount = prob.residualCount;
-    const std::vector<std::string> issues = prob.validate();
+    const ParamIssues issues = prob.validate();
     if (!issues.empty()) {
-        for (size_t i = 0; i < issues.size(); ++i) res.message += (i ? "; " : "") + issues[i];
+        for (size_t i = 0; i < issues.size(); ++i) res.message += (i ? "; " : "") + issues[i].message();
         return res;
     }
 

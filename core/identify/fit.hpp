@@ -97,7 +97,7 @@ struct FitProblem {
     std::function<void(double fraction)> progress;    // 0..1 over all starts
 
     // Every problem with the set-up (bounds, sizes, missing callback), empty if usable.
-    std::vector<std::string> validate() const;
+    ParamIssues validate() const;
 };
 
 enum class FitStatus { Ok, Failed, Cancelled };

@@ -129,9 +129,9 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         out.message = "no runs to fit";
         return out;
     }
-    const std::vector<std::string> pbad = st.predict.validate();
+    const ParamIssues pbad = st.predict.validate();
     if (!pbad.empty()) {
-        out.message = pbad.front();
+        out.message = pbad.front().message();
         return out;
     }
     // Parameters: the free ones (that the law has) with default bounds, starts from the data

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <atomic>
-#include <thread>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 
 #include "identify_internal.hpp"
 
@@ -16,336 +16,361 @@ namespace stickslip::identify {
 using namespace detail;
 using Clock = std::chrono::steady_clock;
 
-IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOptions& opt) {
-    const auto t0 = Clock::now();
-    IdentifyResult res;
-    auto progress = [&](const std::string& s, double f) { if (opt.progress) opt.progress(s, f); };
-    if (runs.empty()) { res.message = "no runs"; return res; }
-    Context cx;
-    {
-        int dec = 0;
-        std::string why;
-        if (!prepareContext(runs, opt, cx, dec, why)) { res.message = why; return res; }
-        res.decimation = dec;
-        res.setup = cx.anyDynamics ? "dynamics" : "prescribed";
-    }
-    std::vector<size_t> fitIdx, valIdx;
-    for (size_t i = 0; i < runs.size(); ++i) (runs[i].validation ? valIdx : fitIdx).push_back(i);
-    if (fitIdx.empty()) { res.message = "every run is a validation run: nothing to fit"; return res; }
+ParamIssues IdentifyOptions::validate() const {
+    ParamIssues out;
+    auto range = [&](const char* field, double v, bool ok, const char* allowed) {
+        if (!ok) out.push_back({field, v, allowed, {}});
+    };
+    range("max_effects", maxEffects, maxEffects >= 0, ">= 0");
+    range("multistarts", multistarts, multistarts >= 1, ">= 1");
+    range("confounded_vif", confoundedVif, confoundedVif > 1.0, "> 1");
+    range("null_alpha", nullAlpha, nullAlpha > 0 && nullAlpha < 1, "in (0, 1)");
+    range("null_replicas", nullReplicas, nullReplicas >= 0 && nullReplicas <= 100000, "in [0, 100000]");
+    range("held_out_alpha", heldOutAlpha, heldOutAlpha > 0 && heldOutAlpha < 1, "in (0, 1)");
+    range("identifiability_alpha", identifiabilityAlpha, identifiabilityAlpha > 0 && identifiabilityAlpha < 1, "in (0, 1)");
+    for (const ParamIssue& i : selfTest.validate()) out.push_back(i);
+    return out;
+}
 
-    std::vector<std::string> cands = opt.candidates;
-    if (cands.empty())
-        for (const EffectInfo& e : effectCatalogue()) cands.push_back(e.name);
-    for (const std::string& c : cands) {
-        EffectInfo info;
-        if (!findEffect(c, info)) { res.message = "unknown effect '" + c + "'"; return res; }
-    }
+namespace {
 
-    // Slip episodes in the fit runs (the independent units of the penalised criterion).
+// Slip episodes in the fit runs (the independent units of the penalised criterion): one per
+// run plus one per reversal of the slip direction.
+double slipEpisodes(const Context& cx, const std::vector<size_t>& fitIdx, double stickVelocity_mps) {
     double episodes = 0;
     for (size_t i : fitIdx) {
         double last = 0;
         episodes += 1;
         for (double v : cx.runs[i].V) {
-            if (std::abs(v) < opt.stickVelocity_mps) continue;
+            if (std::abs(v) < stickVelocity_mps) continue;
             const double sg = v > 0 ? 1 : -1;
             if (last != 0 && sg != last) episodes += 1;
             last = sg;
         }
     }
-    res.slipEpisodes = episodes;
-    res.heldOutAlpha = opt.heldOutAlpha;
-    res.nullAlpha = opt.nullAlpha;
-    res.nullReplicas = opt.nullReplicas;
-    res.bicMargin = opt.bicMargin;
-    res.identifiabilityAlpha = opt.identifiabilityAlpha;
-    if (!(opt.confoundedVif > 1.0)) {
-        res.message = "confoundedVif = " + std::to_string(opt.confoundedVif) + " must be > 1";
-        return res;
-    }
-    if (!(opt.nullAlpha > 0 && opt.nullAlpha < 1) || opt.nullReplicas < 0 || opt.nullReplicas > 100000) {
-        res.message = "nullAlpha = " + std::to_string(opt.nullAlpha) + " must be in (0, 1) and nullReplicas = " +
-                      std::to_string(opt.nullReplicas) + " in [0, 100000]";
-        return res;
-    }
-    if (!(opt.heldOutAlpha > 0 && opt.heldOutAlpha < 1) || !(opt.identifiabilityAlpha > 0 && opt.identifiabilityAlpha < 1)) {
-        res.message = "heldOutAlpha = " + std::to_string(opt.heldOutAlpha) + ", identifiabilityAlpha = " +
-                      std::to_string(opt.identifiabilityAlpha) + ": both must be in (0, 1)";
-        return res;
-    }
-    // Baseline.
-    progress("baseline", 0.0);
+    return episodes;
+}
+
+// A candidate fitted in a round: its score, its fit and the model it extends to.
+struct Tried {
+    CandidateScore sc;
+    FitOutcome fit;
     Spec spec;
-    spec.segments = cx.anyDynamics && opt.dynamicsResidual == DynamicsResidual::Segments;
-    std::map<std::string, double> start = baselineStart(cx, fitIdx);
-    if (cx.anyDynamics) start["m"] = runs[fitIdx[0]].nominalMass_kg;
-    FitOutcome cur = fitSpec(cx, spec, start, fitIdx, opt.multistarts, res.fits, true);
-    if (!cur.ok) {
-        res.cancelled = opt.cancel && opt.cancel->load();
-        res.message = "baseline fit failed: " + cur.message;
-        return res;
-    }
-    res.baseline = cur.estimates;
-    if (cur.values.count("mu")) cx.muScale = cur.values.at("mu");
-    res.before = errorsOf(cx, spec, cur, fitIdx, valIdx, res.fits);
+};
+
+// The loop's state: the current model, its fit, errors and diagnostics, and every score so far.
+struct Loop {
+    Loop(Context& c, const IdentifyOptions& o, IdentifyResult& r) : cx(c), opt(o), res(r) {}
+    Context& cx;
+    const IdentifyOptions& opt;
+    IdentifyResult& res;
+    std::vector<size_t> fitIdx, valIdx;
+    double episodes = 0, segEpisodes = 0;
+    Spec spec;
+    FitOutcome cur;
+    Diagnostics curDiag;
+    ModelErrors curErrors;
+    double curHeldOut = 0;
     std::vector<std::vector<double>> predBefore;
-    res.diagnosticsBefore = diagnoseModel(cx, spec, cur, &predBefore);
-    Diagnostics curDiag = res.diagnosticsBefore;
-    res.tauInt = curDiag.integratedAcfTime;
-    double curHeldOut = res.before.validationNrmse;
-    ModelErrors curErrors = res.before;
-    // Segments: the independent units are the segments (each one reversal, stick and breakaway).
-    double segEpisodes = 0;
-    for (size_t i : fitIdx) segEpisodes += static_cast<double>(cx.runs[i].segments.size());
-    res.segmentsUsed = segEpisodes;
-    auto bicOf = [&](const FitOutcome& f, const Spec& s, double tauInt) {
+    std::map<std::string, CandidateScore> scores;
+
+    bool cancelled() const { return opt.cancel && opt.cancel->load(); }
+    void progress(const std::string& s, double f) const {
+        if (opt.progress) opt.progress(s, f);
+    }
+    // The penalised criterion with the effective sample count capped by the independent units
+    // (slip episodes, or segments with the segment residual).
+    double bicOf(const FitOutcome& f, const Spec& s, double tauInt) const {
         const double cap = std::min(f.count / std::max(tauInt, 1.0), s.segments ? std::max(segEpisodes, 2.0) : episodes);
         return bic(f.ss, f.count, cap, f.nFree);
-    };
-    if (opt.selfTest.replicas > 0) {
-        res.selfTest = runSelfTest(cx, spec, cur, fitIdx, cands,
-                                   std::min(cur.count / std::max(curDiag.integratedAcfTime, 1.0), episodes));
-        if (!res.selfTest.ok && opt.cancel && opt.cancel->load()) {
-            res.cancelled = true;
-            res.message = "cancelled during the self-test";
-            return res;
-        }
     }
-    auto residualName = [&](const Spec& s) {
+    std::string residualName(const Spec& s) const {
         return !cx.anyDynamics ? std::string("prescribed") : s.segments ? std::string("segments") : std::string("equation_error");
-    };
-    res.residual = residualName(spec);
-
-    std::map<std::string, CandidateScore> scores;
-    for (int round = 1; round <= opt.maxEffects; ++round) {
-        if (opt.cancel && opt.cancel->load()) { res.cancelled = true; break; }
-        const double bicCur = bicOf(cur, spec, curDiag.integratedAcfTime);
-        // Auto: the current model refitted with the segment residual, for the stick-phase
-        // candidates (lazily, once per round).
-        Spec segSpec = spec;
-        segSpec.segments = true;
-        FitOutcome segBase;
-        bool segBaseTried = false;
-        auto segBaseline = [&]() -> const FitOutcome& {
-            if (!segBaseTried) {
-                segBaseTried = true;
-                progress("round " + std::to_string(round) + ": baseline with the segment residual", 0.0);
-                segBase = fitSpec(cx, segSpec, cur.values, fitIdx, 1, res.fits);
-            }
-            return segBase;
-        };
-        struct Tried {
-            CandidateScore sc;
-            FitOutcome fit;
-            Spec spec;
-        };
-        std::vector<Tried> tried;
-        size_t k = 0;
-        for (const std::string& c : cands) {
-            ++k;
-            if (std::find(spec.effects.begin(), spec.effects.end(), c) != spec.effects.end()) continue;
-            if (opt.cancel && opt.cancel->load()) break;
-            progress("round " + std::to_string(round) + ": " + c, (k - 1.0) / cands.size());
-            CandidateScore sc;
-            sc.name = c;
-            sc.round = round;
-            Spec s2 = spec;
-            s2.effects.push_back(c);
-            const FitOutcome* base = &cur;
-            double bicBase = bicCur;
-            if (cx.anyDynamics && !spec.segments && actsInStick(c) && opt.dynamicsResidual == DynamicsResidual::Auto) {
-                const FitOutcome& sb = segBaseline();
-                if (!sb.ok) {
-                    sc.reason = "baseline fit with the segment residual failed: " + sb.message;
-                    scores[c] = sc;
-                    continue;
-                }
-                s2.segments = true;
-                base = &sb;
-                bicBase = bicOf(sb, segSpec, 1.0);
-            }
-            sc.residual = residualName(s2);
-            const auto st = scannedStart(cx, s2, c, base->values, fitIdx);
-            FitOutcome f = fitSpec(cx, s2, st, fitIdx, 1, res.fits);
-            if (!f.ok) {
-                sc.reason = "fit failed: " + f.message;
-                scores[c] = sc;
-                continue;
-            }
-            // The candidate contains the current model (its effect where it vanishes): a fit that
-            // ends above the current model's sum of squares stopped in a worse local minimum — a
-            // solver failure, retried from the current model's own point.
-            std::string startNote;
-            if (f.ss > base->ss * (1.0 + 1e-6)) {
-                const FitOutcome g = fitSpec(cx, s2, retryStart(cx, c, base->values, st, ""), fitIdx, 1, res.fits);
-                if (g.ok && g.ss < f.ss) {
-                    f = g;
-                    startNote = "the scanned start ended above the current model it contains (a solver failure); refitted "
-                                "from the current model's point. ";
-                }
-            }
-            // An effect whose size parameter (the first in its catalogue entry) ends on a physical
-            // bound has not been identified (the fit wants it outside the physical range, or the
-            // effect has vanished): the improvement it brings is not evidence for this effect.
-            // Before giving up, one more start halfway between where the effect vanishes and that
-            // bound: if it leaves the bound with a lower cost, the first start was a solver failure;
-            // if it ends there too, the bound is the data's answer. (Time constants and distances
-            // of the other parameters may rightly sit on a bound: "faster than the data resolve".)
-            std::string side = sizeBound(cx, c, f.values);
-            if (!side.empty()) {
-                const FitOutcome g = fitSpec(cx, s2, retryStart(cx, c, f.values, st, side), fitIdx, 1, res.fits);
-                if (g.ok && sizeBound(cx, c, g.values).empty() && g.ss < f.ss) {
-                    f = g;
-                    startNote += "the first start ended on the " + side + " bound of the size, a start halfway to it did not "
-                                 "(a solver failure): refitted. ";
-                    side.clear();
-                }
-            }
-            sc.deltaBic = bicOf(f, s2, s2.segments == spec.segments ? curDiag.integratedAcfTime : 1.0) - bicBase;
-            sc.fitNrmse = f.count > 0 ? std::sqrt(f.ss / f.count) : 0.0;
-            for (const ParamEstimate& p : f.estimates)
-                if (p.name.rfind(c + ".", 0) == 0) sc.params.push_back({p.name.substr(c.size() + 1), p.value, p.stderr_});
-            sc.sizeCorrelation = sizeCorrelations(f.fit, c);
-            sc.startNote = startNote;
-            if (!side.empty()) {
-                EffectInfo info;
-                findEffect(c, info);
-                sc.reason = startNote + "parameter " + info.params.front().name + " ended on its physical " + side +
-                            " bound from two starts (scanned, and halfway to the bound): the data's answer, not a solver "
-                            "failure; not identified (dBIC " + std::to_string(sc.deltaBic) + " not credited)";
-                scores[c] = sc;
-                continue;
-            }
-            tried.push_back({sc, f, s2});
-        }
-        if (tried.empty()) break;
-        std::sort(tried.begin(), tried.end(), [](const auto& a, const auto& b) { return a.sc.deltaBic < b.sc.deltaBic; });
-        // Selection (the rule at IdentifyOptions in identify.hpp): in order of ΔBIC, the first candidate
-        // that passes all three tests is added; the others are reported with the test they failed.
-        int chosen = -1;
-        ModelErrors me, segBaseErrors;
-        bool segBaseErrorsDone = false;
-        double heldOutRef = curHeldOut;
-        for (size_t ti = 0; ti < tried.size(); ++ti) {
-            CandidateScore& sc = tried[ti].sc;
-            if (!(sc.deltaBic < -opt.bicMargin)) {
-                sc.reason = std::string(ti == 0 ? "best candidate of round " + std::to_string(round) + " but " : "") + "dBIC = " +
-                            std::to_string(sc.deltaBic) + " is not below -" + std::to_string(opt.bicMargin) +
-                            ": improvement within what noise explains";
-                continue;
-            }
-            if (chosen >= 0) {
-                sc.reason = "dBIC = " + std::to_string(sc.deltaBic) + " but " + tried[chosen].sc.name + " was added in round " +
-                            std::to_string(round);
-                continue;
-            }
-            // (0) Confounded with an effect already in the model: the two trade off in the joint fit.
-            if (const std::string with = confoundedWith(sc, spec.effects, opt.confoundedVif); !with.empty()) {
-                const double r = sc.sizeCorrelation.at(with);
-                sc.confoundedWith = with;
-                sc.reason = "confounded with " + with + ": their sizes trade off in the joint fit (correlation " +
-                            std::to_string(r) + ", variance inflation " + std::to_string(1.0 / std::max(1.0 - r * r, 1e-300)) +
-                            " > " + std::to_string(opt.confoundedVif) + "): the data cannot tell the two apart; dBIC " +
-                            std::to_string(sc.deltaBic) + " not credited";
-                continue;
-            }
-            // (1b) The gain against what noise alone gives on these runs (noise_null.hpp).
-            if (opt.nullReplicas > 0) {
-                progress("round " + std::to_string(round) + ": noise null of " + sc.name, 1.0);
-                const Spec& cs = tried[ti].spec;
-                const FitOutcome& base = (cs.segments != spec.segments) ? segBase : cur;
-                std::vector<double> r0;
-                std::vector<NoiseBlock> blocks;
-                const std::vector<FitParameter> ps = parameters(cx, cs, tried[ti].fit.values);
-                std::vector<std::string> baseNames, effNames;
-                for (const FitParameter& fp : ps) {
-                    if (!fp.free) continue;
-                    (fp.name.rfind(sc.name + ".", 0) == 0 ? effNames : baseNames).push_back(fp.name);
-                }
-                if (residualVector(cx, cs.segments != spec.segments ? segSpec : spec, base.values, fitIdx, r0, &blocks)) {
-                    const Eigen::MatrixXd J0 = residualJacobian(cx, cs, tried[ti].fit.values, fitIdx, ps, baseNames, r0.size());
-                    const Eigen::MatrixXd Jc = residualJacobian(cx, cs, tried[ti].fit.values, fitIdx, ps, effNames, r0.size());
-                    const NullGains ng = projectionGainNull(J0, Jc, blocks, opt.nullReplicas, opt.seed + 7919u * round);
-                    sc.gain = base.ss - tried[ti].fit.ss;
-                    sc.nullGain = ng.quantile(1.0 - opt.nullAlpha);
-                    sc.nullReplicas = static_cast<int>(ng.gains.size());
-                    if (!(sc.gain > sc.nullGain)) {
-                        sc.reason = "gain in the sum of squares " + std::to_string(sc.gain) + " is within the " +
-                                    std::to_string(100.0 * (1.0 - opt.nullAlpha)) + " % quantile of " +
-                                    std::to_string(sc.nullReplicas) + " noise replicas of these runs (" +
-                                    std::to_string(sc.nullGain) + "): noise alone gives as much";
-                        continue;
-                    }
-                }
-            }
-            const bool sw = tried[ti].spec.segments != spec.segments;
-            const ModelErrors* ref = &curErrors;
-            if (sw) {
-                if (!segBaseErrorsDone) {
-                    progress("round " + std::to_string(round) + ": held-out check of the segment baseline", 1.0);
-                    segBaseErrors = errorsOf(cx, segSpec, segBase, fitIdx, valIdx, res.fits);
-                    segBaseErrorsDone = true;
-                }
-                ref = &segBaseErrors;
-            }
-            progress("round " + std::to_string(round) + ": held-out check of " + sc.name, 1.0);
-            std::vector<std::map<std::string, double>> loo;
-            ModelErrors e = errorsOf(cx, tried[ti].spec, tried[ti].fit, fitIdx, valIdx, res.fits, &loo);
-            sc.heldOutNrmse = e.validationNrmse;
-            if (!passesSelection(cx, sc, tried[ti].fit, *ref, e, loo, valIdx.empty() ? fitIdx : valIdx,
-                                 curDiag.integratedAcfTime))
-                continue;
-            chosen = static_cast<int>(ti);
-            me = std::move(e);
-            heldOutRef = ref->validationNrmse;
-        }
-        for (const Tried& t : tried) {
-            scores[t.sc.name] = t.sc;
-            for (AddedEffect& ae : res.effectsAdded)
-                if (ae.name == t.sc.confoundedWith) ae.confoundedWith.push_back(t.sc.name);
-        }
-        if (chosen < 0) break;
-        CandidateScore& best = tried[chosen].sc;
-        const FitOutcome& bestFit = tried[chosen].fit;
-        const Spec s2 = tried[chosen].spec;
-        const bool switching = s2.segments != spec.segments;
-        best.accepted = true;
-        scores[best.name] = best;
-        if (switching) {
-            // From here on the model is scored with the segment residual: "before" is the
-            // baseline under that residual, so before and after compare like with like.
-            res.before = segBaseErrors;
-            predBefore.clear();
-            res.diagnosticsBefore = diagnoseModel(cx, segSpec, segBase, &predBefore);
-            curDiag = res.diagnosticsBefore;
-            res.residual = "segments";
-        }
-        AddedEffect ae;
-        ae.name = best.name;
-        ae.params = best.params;
-        ae.deltaBic = best.deltaBic;
-        ae.heldOutBefore = heldOutRef;
-        ae.heldOutAfter = me.validationNrmse;
-        EffectInfo info;
-        findEffect(best.name, info);
-        for (const std::string& sname : info.pointers)
-            for (const SignalCorrelation& c : curDiag.correlations)
-                if (c.signal == sname) ae.pointedBy.push_back(c);
-        res.effectsAdded.push_back(ae);
-        spec = s2;
-        cur = bestFit;
-        curHeldOut = me.validationNrmse;
-        res.after = me;
-        curErrors = me;
-        curDiag = diagnoseModel(cx, spec, cur, nullptr);
     }
-    for (const std::string& c : cands)
-        if (scores.count(c)) res.candidates.push_back(scores[c]);
+};
+
+// One round's view of the current model refitted with the segment residual (for the stick-phase
+// candidates of the Auto residual), made lazily, at most once per round.
+struct Round {
+    int number = 0;
+    double bicCur = 0;
+    Spec segSpec;
+    FitOutcome segBase;
+    bool segBaseTried = false;
+    ModelErrors segBaseErrors;
+    bool segBaseErrorsDone = false;
+
+    std::string label() const { return "round " + std::to_string(number); }
+    const FitOutcome& segBaseline(Loop& L) {
+        if (!segBaseTried) {
+            segBaseTried = true;
+            L.progress(label() + ": baseline with the segment residual", 0.0);
+            segBase = fitSpec(L.cx, segSpec, L.cur.values, L.fitIdx, 1, L.res.fits);
+        }
+        return segBase;
+    }
+    const ModelErrors& segBaselineErrors(Loop& L) {
+        if (!segBaseErrorsDone) {
+            L.progress(label() + ": held-out check of the segment baseline", 1.0);
+            segBaseErrors = errorsOf(L.cx, segSpec, segBase, L.fitIdx, L.valIdx, L.res.fits);
+            segBaseErrorsDone = true;
+        }
+        return segBaseErrors;
+    }
+};
+
+// Fits the baseline (the law alone) and records "before". False with res.message on failure.
+bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
+    L.progress("baseline", 0.0);
+    L.spec.segments = L.cx.anyDynamics && L.opt.dynamicsResidual == DynamicsResidual::Segments;
+    std::map<std::string, double> start = baselineStart(L.cx, L.fitIdx);
+    if (L.cx.anyDynamics) start["m"] = runs[L.fitIdx[0]].nominalMass_kg;
+    L.cur = fitSpec(L.cx, L.spec, start, L.fitIdx, L.opt.multistarts, L.res.fits, true);
+    if (!L.cur.ok) {
+        L.res.cancelled = L.cancelled();
+        L.res.message = "baseline fit failed: " + L.cur.message;
+        return false;
+    }
+    L.res.baseline = L.cur.estimates;
+    if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
+    L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
+    L.res.diagnosticsBefore = diagnoseModel(L.cx, L.spec, L.cur, &L.predBefore);
+    L.curDiag = L.res.diagnosticsBefore;
+    L.res.tauInt = L.curDiag.integratedAcfTime;
+    L.curHeldOut = L.res.before.validationNrmse;
+    L.curErrors = L.res.before;
+    // Segments: the independent units are the segments (each one reversal, stick and breakaway).
+    for (size_t i : L.fitIdx) L.segEpisodes += static_cast<double>(L.cx.runs[i].segments.size());
+    L.res.segmentsUsed = L.segEpisodes;
+    return true;
+}
+
+// Fits candidate c on top of the current model (warm start from a scan around the current
+// point; retried from another start when it ends above the model it contains or with its size
+// on a physical bound). nullopt when it cannot be scored: the reason is in L.scores[c].
+std::optional<Tried> fitCandidate(Loop& L, Round& R, const std::string& c) {
+    CandidateScore sc;
+    sc.name = c;
+    sc.round = R.number;
+    Spec s2 = L.spec;
+    s2.effects.push_back(c);
+    const FitOutcome* base = &L.cur;
+    double bicBase = R.bicCur;
+    if (L.cx.anyDynamics && !L.spec.segments && actsInStick(c) && L.opt.dynamicsResidual == DynamicsResidual::Auto) {
+        const FitOutcome& sb = R.segBaseline(L);
+        if (!sb.ok) {
+            sc.reason = "baseline fit with the segment residual failed: " + sb.message;
+            L.scores[c] = sc;
+            return std::nullopt;
+        }
+        s2.segments = true;
+        base = &sb;
+        bicBase = L.bicOf(sb, R.segSpec, 1.0);
+    }
+    sc.residual = L.residualName(s2);
+    const auto st = scannedStart(L.cx, s2, c, base->values, L.fitIdx);
+    FitOutcome f = fitSpec(L.cx, s2, st, L.fitIdx, 1, L.res.fits);
+    if (!f.ok) {
+        sc.reason = "fit failed: " + f.message;
+        L.scores[c] = sc;
+        return std::nullopt;
+    }
+    // The candidate contains the current model (its effect where it vanishes): a fit that
+    // ends above the current model's sum of squares stopped in a worse local minimum — a
+    // solver failure, retried from the current model's own point.
+    std::string startNote;
+    if (f.ss > base->ss * (1.0 + 1e-6)) {
+        const FitOutcome g = fitSpec(L.cx, s2, retryStart(L.cx, c, base->values, st, ""), L.fitIdx, 1, L.res.fits);
+        if (g.ok && g.ss < f.ss) {
+            f = g;
+            startNote = "the scanned start ended above the current model it contains (a solver failure); refitted "
+                        "from the current model's point. ";
+        }
+    }
+    // An effect whose size parameter (the first in its catalogue entry) ends on a physical
+    // bound has not been identified (the fit wants it outside the physical range, or the
+    // effect has vanished): the improvement it brings is not evidence for this effect.
+    // Before giving up, one more start halfway between where the effect vanishes and that
+    // bound: if it leaves the bound with a lower cost, the first start was a solver failure;
+    // if it ends there too, the bound is the data's answer. (Time constants and distances
+    // of the other parameters may rightly sit on a bound: "faster than the data resolve".)
+    std::string side = sizeBound(L.cx, c, f.values);
+    if (!side.empty()) {
+        const FitOutcome g = fitSpec(L.cx, s2, retryStart(L.cx, c, f.values, st, side), L.fitIdx, 1, L.res.fits);
+        if (g.ok && sizeBound(L.cx, c, g.values).empty() && g.ss < f.ss) {
+            f = g;
+            startNote += "the first start ended on the " + side + " bound of the size, a start halfway to it did not "
+                         "(a solver failure): refitted. ";
+            side.clear();
+        }
+    }
+    sc.deltaBic = L.bicOf(f, s2, s2.segments == L.spec.segments ? L.curDiag.integratedAcfTime : 1.0) - bicBase;
+    sc.fitNrmse = f.count > 0 ? std::sqrt(f.ss / f.count) : 0.0;
+    for (const ParamEstimate& p : f.estimates)
+        if (p.name.rfind(c + ".", 0) == 0) sc.params.push_back({p.name.substr(c.size() + 1), p.value, p.stderr_});
+    sc.sizeCorrelation = sizeCorrelations(f.fit, c);
+    sc.startNote = startNote;
+    if (!side.empty()) {
+        EffectInfo info;
+        findEffect(c, info);
+        sc.reason = startNote + "parameter " + info.params.front().name + " ended on its physical " + side +
+                    " bound from two starts (scanned, and halfway to the bound): the data's answer, not a solver "
+                    "failure; not identified (dBIC " + std::to_string(sc.deltaBic) + " not credited)";
+        L.scores[c] = sc;
+        return std::nullopt;
+    }
+    return Tried{sc, f, s2};
+}
+
+// (1b) The candidate's gain against what noise alone gives on these runs (noise_null.hpp).
+// False, with the reason in t.sc, when noise alone gives as much.
+bool beatsNoiseNull(Loop& L, Round& R, Tried& t) {
+    CandidateScore& sc = t.sc;
+    L.progress(R.label() + ": noise null of " + sc.name, 1.0);
+    const bool sw = t.spec.segments != L.spec.segments;
+    const FitOutcome& base = sw ? R.segBase : L.cur;
+    std::vector<double> r0;
+    std::vector<NoiseBlock> blocks;
+    const std::vector<FitParameter> ps = parameters(L.cx, t.spec, t.fit.values);
+    std::vector<std::string> baseNames, effNames;
+    for (const FitParameter& fp : ps) {
+        if (!fp.free) continue;
+        (fp.name.rfind(sc.name + ".", 0) == 0 ? effNames : baseNames).push_back(fp.name);
+    }
+    if (!residualVector(L.cx, sw ? R.segSpec : L.spec, base.values, L.fitIdx, r0, &blocks)) return true;
+    const Eigen::MatrixXd J0 = residualJacobian(L.cx, t.spec, t.fit.values, L.fitIdx, ps, baseNames, r0.size());
+    const Eigen::MatrixXd Jc = residualJacobian(L.cx, t.spec, t.fit.values, L.fitIdx, ps, effNames, r0.size());
+    const NullGains ng = projectionGainNull(J0, Jc, blocks, L.opt.nullReplicas, L.opt.seed + 7919u * R.number);
+    sc.gain = base.ss - t.fit.ss;
+    sc.nullGain = ng.quantile(1.0 - L.opt.nullAlpha);
+    sc.nullReplicas = static_cast<int>(ng.gains.size());
+    if (sc.gain > sc.nullGain) return true;
+    sc.reason = "gain in the sum of squares " + std::to_string(sc.gain) + " is within the " +
+                std::to_string(100.0 * (1.0 - L.opt.nullAlpha)) + " % quantile of " + std::to_string(sc.nullReplicas) +
+                " noise replicas of these runs (" + std::to_string(sc.nullGain) + "): noise alone gives as much";
+    return false;
+}
+
+// The selection rule (IdentifyOptions in identify.hpp): in order of ΔBIC, the first candidate that
+// passes every test is chosen; the others get the test they failed as their reason. Returns the
+// chosen index (-1: none) with its held-out errors and the held-out error it is compared with.
+int selectCandidate(Loop& L, Round& R, std::vector<Tried>& tried, ModelErrors& me, double& heldOutRef) {
+    int chosen = -1;
+    heldOutRef = L.curHeldOut;
+    for (size_t ti = 0; ti < tried.size(); ++ti) {
+        CandidateScore& sc = tried[ti].sc;
+        if (!(sc.deltaBic < -L.opt.bicMargin)) {
+            sc.reason = std::string(ti == 0 ? "best candidate of " + R.label() + " but " : "") + "dBIC = " +
+                        std::to_string(sc.deltaBic) + " is not below -" + std::to_string(L.opt.bicMargin) +
+                        ": improvement within what noise explains";
+            continue;
+        }
+        if (chosen >= 0) {
+            sc.reason = "dBIC = " + std::to_string(sc.deltaBic) + " but " + tried[chosen].sc.name + " was added in " +
+                        R.label();
+            continue;
+        }
+        // (0) Confounded with an effect already in the model: the two trade off in the joint fit.
+        if (const std::string with = confoundedWith(sc, L.spec.effects, L.opt.confoundedVif); !with.empty()) {
+            const double r = sc.sizeCorrelation.at(with);
+            sc.confoundedWith = with;
+            sc.reason = "confounded with " + with + ": their sizes trade off in the joint fit (correlation " +
+                        std::to_string(r) + ", variance inflation " + std::to_string(1.0 / std::max(1.0 - r * r, 1e-300)) +
+                        " > " + std::to_string(L.opt.confoundedVif) + "): the data cannot tell the two apart; dBIC " +
+                        std::to_string(sc.deltaBic) + " not credited";
+            continue;
+        }
+        if (L.opt.nullReplicas > 0 && !beatsNoiseNull(L, R, tried[ti])) continue;
+        const bool sw = tried[ti].spec.segments != L.spec.segments;
+        const ModelErrors& ref = sw ? R.segBaselineErrors(L) : L.curErrors;
+        L.progress(R.label() + ": held-out check of " + sc.name, 1.0);
+        std::vector<std::map<std::string, double>> loo;
+        ModelErrors e = errorsOf(L.cx, tried[ti].spec, tried[ti].fit, L.fitIdx, L.valIdx, L.res.fits, &loo);
+        sc.heldOutNrmse = e.validationNrmse;
+        if (!passesSelection(L.cx, sc, tried[ti].fit, ref, e, loo, L.valIdx.empty() ? L.fitIdx : L.valIdx,
+                             L.curDiag.integratedAcfTime))
+            continue;
+        chosen = static_cast<int>(ti);
+        me = std::move(e);
+        heldOutRef = ref.validationNrmse;
+    }
+    return chosen;
+}
+
+// Makes the chosen candidate the current model and reports it as added.
+void addEffect(Loop& L, Round& R, Tried& chosen, const ModelErrors& me, double heldOutRef) {
+    CandidateScore& best = chosen.sc;
+    best.accepted = true;
+    L.scores[best.name] = best;
+    if (chosen.spec.segments != L.spec.segments) {
+        // From here on the model is scored with the segment residual: "before" is the
+        // baseline under that residual, so before and after compare like with like.
+        L.res.before = R.segBaseErrors;
+        L.predBefore.clear();
+        L.res.diagnosticsBefore = diagnoseModel(L.cx, R.segSpec, R.segBase, &L.predBefore);
+        L.curDiag = L.res.diagnosticsBefore;
+        L.res.residual = "segments";
+    }
+    AddedEffect ae;
+    ae.name = best.name;
+    ae.params = best.params;
+    ae.deltaBic = best.deltaBic;
+    ae.heldOutBefore = heldOutRef;
+    ae.heldOutAfter = me.validationNrmse;
+    EffectInfo info;
+    findEffect(best.name, info);
+    for (const std::string& sname : info.pointers)
+        for (const SignalCorrelation& c : L.curDiag.correlations)
+            if (c.signal == sname) ae.pointedBy.push_back(c);
+    L.res.effectsAdded.push_back(ae);
+    L.spec = chosen.spec;
+    L.cur = chosen.fit;
+    L.curHeldOut = me.validationNrmse;
+    L.res.after = me;
+    L.curErrors = me;
+    L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr);
+}
+
+// One round: every candidate not yet in the model is fitted and scored; the best that passes
+// the selection is added. False when nothing was added (the loop ends).
+bool runRound(Loop& L, int number, const std::vector<std::string>& cands) {
+    Round R;
+    R.number = number;
+    R.bicCur = L.bicOf(L.cur, L.spec, L.curDiag.integratedAcfTime);
+    R.segSpec = L.spec;
+    R.segSpec.segments = true;
+    std::vector<Tried> tried;
+    size_t k = 0;
+    for (const std::string& c : cands) {
+        ++k;
+        if (std::find(L.spec.effects.begin(), L.spec.effects.end(), c) != L.spec.effects.end()) continue;
+        if (L.cancelled()) break;
+        L.progress(R.label() + ": " + c, (k - 1.0) / cands.size());
+        if (std::optional<Tried> t = fitCandidate(L, R, c)) tried.push_back(std::move(*t));
+    }
+    if (tried.empty()) return false;
+    std::sort(tried.begin(), tried.end(), [](const auto& a, const auto& b) { return a.sc.deltaBic < b.sc.deltaBic; });
+    ModelErrors me;
+    double heldOutRef = 0;
+    const int chosen = selectCandidate(L, R, tried, me, heldOutRef);
+    for (const Tried& t : tried) {
+        L.scores[t.sc.name] = t.sc;
+        for (AddedEffect& ae : L.res.effectsAdded)
+            if (ae.name == t.sc.confoundedWith) ae.confoundedWith.push_back(t.sc.name);
+    }
+    if (chosen < 0) return false;
+    addEffect(L, R, tried[static_cast<size_t>(chosen)], me, heldOutRef);
+    return true;
+}
+
+// The final model's diagnostics, the "unexplained" verdict with the diagnostic behind it, and
+// the per-run traces before and after.
+void finishReport(Loop& L) {
+    IdentifyResult& res = L.res;
     if (res.effectsAdded.empty()) res.after = res.before;
-    // Final parameters (effect parameters kept under "effect.param" names).
-    res.final = cur.estimates;
+    res.final = L.cur.estimates;  // effect parameters under "effect.param" names
     std::vector<std::vector<double>> predAfter;
-    res.diagnosticsAfter = diagnoseModel(cx, spec, cur, &predAfter);
+    res.diagnosticsAfter = diagnoseModel(L.cx, L.spec, L.cur, &predAfter);
     res.unexplained = res.diagnosticsAfter.whiteness.structured;
     if (res.unexplained) {
         const auto& cs = res.diagnosticsAfter.correlations;
@@ -359,23 +384,93 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
                                 (top != cs.end() ? top->signal + " r = " + std::to_string(top->correlation) : "none") +
                                 "; no catalogue candidate lowered the penalised and held-out error further";
     }
-    for (size_t i = 0; i < cx.runs.size(); ++i) {
-        const Prepared& p = cx.runs[i];
+    for (size_t i = 0; i < L.cx.runs.size(); ++i) {
+        const Prepared& p = L.cx.runs[i];
         RunTrace t;
         t.file = p.run->file;
         t.t_s = p.t;
         t.relVel_mps = p.V;
         t.measured_N = p.F;
-        t.before_N = predBefore[i];
+        t.before_N = L.predBefore[i];
         t.after_N = predAfter[i];
         t.used.assign(p.size(), 1);
         for (size_t k = 0; k < p.size(); ++k) t.used[k] = std::isfinite(t.before_N[k]) && std::isfinite(t.after_N[k]);
         res.traces.push_back(std::move(t));
     }
+}
+
+}  // namespace
+
+IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOptions& opt) {
+    const auto t0 = Clock::now();
+    IdentifyResult res;
+    if (runs.empty()) {
+        res.message = "no runs";
+        return res;
+    }
+    Context cx;
+    {
+        int dec = 0;
+        std::string why;
+        if (!prepareContext(runs, opt, cx, dec, why)) {
+            res.message = why;
+            return res;
+        }
+        res.decimation = dec;
+        res.setup = cx.anyDynamics ? "dynamics" : "prescribed";
+    }
+    Loop L(cx, opt, res);
+    for (size_t i = 0; i < runs.size(); ++i) (runs[i].validation ? L.valIdx : L.fitIdx).push_back(i);
+    if (L.fitIdx.empty()) {
+        res.message = "every run is a validation run: nothing to fit";
+        return res;
+    }
+    std::vector<std::string> cands = opt.candidates;
+    if (cands.empty())
+        for (const EffectInfo& e : effectCatalogue()) cands.push_back(e.name);
+    for (const std::string& c : cands) {
+        EffectInfo info;
+        if (!findEffect(c, info)) {
+            res.message = "unknown effect '" + c + "'";
+            return res;
+        }
+    }
+    L.episodes = slipEpisodes(cx, L.fitIdx, opt.stickVelocity_mps);
+    res.slipEpisodes = L.episodes;
+    res.heldOutAlpha = opt.heldOutAlpha;
+    res.nullAlpha = opt.nullAlpha;
+    res.nullReplicas = opt.nullReplicas;
+    res.bicMargin = opt.bicMargin;
+    res.identifiabilityAlpha = opt.identifiabilityAlpha;
+    if (const ParamIssues bad = opt.validate(); !bad.empty()) {
+        res.message = formatIssues(bad);
+        return res;
+    }
+    if (!fitBaseline(L, runs)) return res;
+    if (opt.selfTest.replicas > 0) {
+        res.selfTest = runSelfTest(cx, L.spec, L.cur, L.fitIdx, cands,
+                                   std::min(L.cur.count / std::max(L.curDiag.integratedAcfTime, 1.0), L.episodes));
+        if (!res.selfTest.ok && L.cancelled()) {
+            res.cancelled = true;
+            res.message = "cancelled during the self-test";
+            return res;
+        }
+    }
+    res.residual = L.residualName(L.spec);
+    for (int round = 1; round <= opt.maxEffects; ++round) {
+        if (L.cancelled()) {
+            res.cancelled = true;
+            break;
+        }
+        if (!runRound(L, round, cands)) break;
+    }
+    for (const std::string& c : cands)
+        if (L.scores.count(c)) res.candidates.push_back(L.scores[c]);
+    finishReport(L);
     res.ok = true;
-    res.cancelled = res.cancelled || (opt.cancel && opt.cancel->load());
+    res.cancelled = res.cancelled || L.cancelled();
     res.wallTime_s = std::chrono::duration<double>(Clock::now() - t0).count();
-    progress("done", 1.0);
+    L.progress("done", 1.0);
     return res;
 }
 

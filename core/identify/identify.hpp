@@ -137,6 +137,9 @@ struct IdentifyOptions {
     SelfTestOptions selfTest;
     const std::atomic<bool>* cancel = nullptr;
     std::function<void(const std::string& stage, double fraction)> progress;
+    // Every option out of its range (field named as the CLI's option with '_', the value and the
+    // allowed range), the self-test's included; empty when usable.
+    ParamIssues validate() const;
 };
 
 struct ParamEstimate {

@@ -238,8 +238,9 @@ bool runIdentifyRequest(const IdentifyRequest& o, IdentifyResult& res, nlohmann:
                             "--self-test-size '" + sz + "': expected EFFECT=VALUE, e.g. backlash=1e-4 (the effect's size parameter in SI units)");
             opt.selfTest.sizes[sz.substr(0, eq)] = v;
         }
-        if (const std::string why = opt.selfTest.validate(); !why.empty()) return fail(status, PipelineCode::BadArguments, why);
     }
+    if (const ParamIssues why = opt.validate(); !why.empty())
+        return fail(status, PipelineCode::BadArguments, formatIssues(why));
     io::Dataset fitData, valData;
     SetupKind setup = SetupKind::Prescribed;
     if (!loadMeasuredInputs(o.in, fitData, valData, setup, status)) return false;

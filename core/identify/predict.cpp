@@ -12,19 +12,21 @@ namespace stickslip::identify {
 
 using io::Signal;
 
-std::vector<std::string> PredictSettings::validate() const {
-    std::vector<std::string> v;
-    if (stride < 1) v.push_back("stride = " + std::to_string(stride) + " must be >= 1");
-    if (substeps < 1) v.push_back("substeps = " + std::to_string(substeps) + " must be >= 1");
-    if (warmup_s < 0) v.push_back("warmup must be >= 0 s");
-    if (!(dt_s > 0)) v.push_back("dt must be > 0 s");
-    if (!(segment_s > 0)) v.push_back("segment length must be > 0 s");
-    if (!(segmentSpacing_s >= segment_s)) v.push_back("segment spacing must be >= segment length");
-    if (residualStride < 1) v.push_back("residual stride must be >= 1");
+ParamIssues PredictSettings::validate() const {
+    ParamIssues v;
+    auto note = [&](const char* field, std::string text) { v.push_back(ParamIssue::note(field, std::move(text))); };
+    if (stride < 1) note("stride", "stride = " + std::to_string(stride) + " must be >= 1");
+    if (substeps < 1) note("substeps", "substeps = " + std::to_string(substeps) + " must be >= 1");
+    if (warmup_s < 0) note("warmup", "warmup must be >= 0 s");
+    if (!(dt_s > 0)) note("dt", "dt must be > 0 s");
+    if (!(segment_s > 0)) note("segment", "segment length must be > 0 s");
+    if (!(segmentSpacing_s >= segment_s)) note("segment_spacing", "segment spacing must be >= segment length");
+    if (residualStride < 1) note("residual_stride", "residual stride must be >= 1");
     if (initialStateIterations < 1 || initialStateIterations > 20)
-        v.push_back("initial-state iterations = " + std::to_string(initialStateIterations) + " must be in [1, 20]");
+        note("initial_state_iterations",
+             "initial-state iterations = " + std::to_string(initialStateIterations) + " must be in [1, 20]");
     if (!(slipStartFraction >= 0.0 && slipStartFraction < 1.0))
-        v.push_back("slip start fraction = " + std::to_string(slipStartFraction) + " must be in [0, 1)");
+        note("slip_start_fraction", "slip start fraction = " + std::to_string(slipStartFraction) + " must be in [0, 1)");
     return v;
 }
 

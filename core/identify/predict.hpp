@@ -66,7 +66,7 @@ struct PredictSettings {
     // the fit's residual degrees of freedom are m − p − that.
     bool fitInitialState = true;
     int initialStateIterations = 1;
-    std::vector<std::string> validate() const;
+    ParamIssues validate() const;  // every problem, naming the setting, its value and the allowed range
 };
 
 // One run's prediction at the sample indices `index` (into the CleanRun's signals).

@@ -10,25 +10,26 @@
 
 namespace stickslip::identify {
 
-std::vector<std::string> PreprocessSettings::validate(double fs) const {
-    std::vector<std::string> v;
+ParamIssues PreprocessSettings::validate(double fs) const {
+    ParamIssues v;
+    auto add = [&](const char* field, std::string text) { v.push_back(ParamIssue::note(field, std::move(text))); };
     auto num = [](double x) { return std::to_string(x); };
     if (filters.bandStop) {
         const double lo = filters.bandStopCenter_Hz - filters.bandStopWidth_Hz / 2, hi = filters.bandStopCenter_Hz + filters.bandStopWidth_Hz / 2;
-        if (!(lo > 0.0)) v.push_back("band-stop: lower edge " + num(lo) + " Hz must be > 0");
-        if (!(hi < fs / 2)) v.push_back("band-stop: upper edge " + num(hi) + " Hz must be below Nyquist " + num(fs / 2) + " Hz");
-        if (filters.bandStopOrder < 1 || filters.bandStopOrder > 10) v.push_back("band-stop order " + std::to_string(filters.bandStopOrder) + " must be in [1, 10]");
+        if (!(lo > 0.0)) add("band_stop", "band-stop: lower edge " + num(lo) + " Hz must be > 0");
+        if (!(hi < fs / 2)) add("band_stop", "band-stop: upper edge " + num(hi) + " Hz must be below Nyquist " + num(fs / 2) + " Hz");
+        if (filters.bandStopOrder < 1 || filters.bandStopOrder > 10) add("band_stop_order", "band-stop order " + std::to_string(filters.bandStopOrder) + " must be in [1, 10]");
     }
     if (filters.lowPass) {
         if (!(filters.lowPass_Hz > 0.0 && filters.lowPass_Hz < fs / 2))
-            v.push_back("low-pass cut-off " + num(filters.lowPass_Hz) + " Hz must be in (0, " + num(fs / 2) + ") Hz");
-        if (filters.lowPassOrder < 1 || filters.lowPassOrder > 12) v.push_back("low-pass order " + std::to_string(filters.lowPassOrder) + " must be in [1, 12]");
+            add("low_pass", "low-pass cut-off " + num(filters.lowPass_Hz) + " Hz must be in (0, " + num(fs / 2) + ") Hz");
+        if (filters.lowPassOrder < 1 || filters.lowPassOrder > 12) add("low_pass_order", "low-pass order " + std::to_string(filters.lowPassOrder) + " must be in [1, 12]");
     }
-    if (sgHalfWindow < 1) v.push_back("Savitzky-Golay half window must be >= 1");
-    if (sgOrder < 1 || sgOrder > 2 * sgHalfWindow) v.push_back("Savitzky-Golay order must be in [1, 2*halfWindow]");
-    if (!(trim.amplitudeFraction > 0.0 && trim.amplitudeFraction <= 1.0)) v.push_back("trim amplitude fraction must be in (0, 1]");
-    if (trim.start_s < 0 || trim.end_s < 0) v.push_back("trim times must be >= 0");
-    if (stageFourierOrder < 0 || stageFourierOrder > 50) v.push_back("stage Fourier order must be in [0, 50]");
+    if (sgHalfWindow < 1) add("sg_half_window", "Savitzky-Golay half window must be >= 1");
+    if (sgOrder < 1 || sgOrder > 2 * sgHalfWindow) add("sg_order", "Savitzky-Golay order must be in [1, 2*halfWindow]");
+    if (!(trim.amplitudeFraction > 0.0 && trim.amplitudeFraction <= 1.0)) add("trim_amplitude", "trim amplitude fraction must be in (0, 1]");
+    if (trim.start_s < 0 || trim.end_s < 0) add("trim", "trim times must be >= 0");
+    if (stageFourierOrder < 0 || stageFourierOrder > 50) add("stage_fourier_order", "stage Fourier order must be in [0, 50]");
     return v;
 }
 
@@ -199,11 +200,11 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
     }
     if (!makeUniform(raw, s, c, error)) return false;
     const double fs = 1.0 / c.dt_s;
-    const std::vector<std::string> bad = s.validate(fs);
+    const ParamIssues bad = s.validate(fs);
     if (!bad.empty()) {
         if (error) {
             *error = raw.file + ": ";
-            for (size_t i = 0; i < bad.size(); ++i) *error += (i ? "; " : "") + bad[i];
+            for (size_t i = 0; i < bad.size(); ++i) *error += (i ? "; " : "") + bad[i].message();
         }
         return false;
     }

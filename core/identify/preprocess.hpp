@@ -10,6 +10,7 @@
 
 #include "../dsp/iir.hpp"
 #include "../io/dataset.hpp"
+#include "../param_table.hpp"
 
 namespace stickslip::identify {
 
@@ -42,7 +43,7 @@ struct PreprocessSettings {
     // at the refined drive frequency. Sensor noise on u would otherwise reach the predicted
     // force amplified by ε_T during stick. 0 = use the filtered measurement as it is.
     int stageFourierOrder = 5;
-    std::vector<std::string> validate(double sampleRate_Hz) const;  // every problem, empty if fine
+    ParamIssues validate(double sampleRate_Hz) const;  // every problem, empty if fine
 };
 
 nlohmann::json toJson(const PreprocessSettings& s);

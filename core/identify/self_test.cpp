@@ -11,19 +11,24 @@
 
 namespace stickslip::identify {
 
-std::string SelfTestOptions::validate() const {
+ParamIssues SelfTestOptions::validate() const {
+    ParamIssues out;
+    auto note = [&](const char* field, std::string text) { out.push_back(ParamIssue::note(field, std::move(text))); };
     if (replicas < 0 || replicas > 10000)
-        return "self-test replicas = " + std::to_string(replicas) + " is outside the allowed range [0, 10000]";
-    if (replicas > 0 && levels.empty() && sizes.empty()) return "self-test: no signal level and no stated size";
+        note("replicas", "self-test replicas = " + std::to_string(replicas) + " is outside the allowed range [0, 10000]");
+    if (replicas > 0 && levels.empty() && sizes.empty()) note("levels", "self-test: no signal level and no stated size");
     for (double l : levels)
-        if (!(l > 0 && l <= 100)) return "self-test level = " + std::to_string(l) + " is outside the allowed range (0, 100]";
+        if (!(l > 0 && l <= 100)) note("levels", "self-test level = " + std::to_string(l) + " is outside the allowed range (0, 100]");
     for (const auto& [name, v] : sizes) {
         EffectInfo info;
-        if (!findEffect(name, info)) return "self-test size: unknown effect '" + name + "'";
+        if (!findEffect(name, info)) {
+            note("sizes", "self-test size: unknown effect '" + name + "'");
+            continue;
+        }
         const EffectParam& q = info.params.front();
-        if (!std::isfinite(v)) return "self-test size of " + name + "." + q.name + " = " + std::to_string(v) + " is not finite";
+        if (!std::isfinite(v)) note("sizes", "self-test size of " + name + "." + q.name + " = " + std::to_string(v) + " is not finite");
     }
-    return {};
+    return out;
 }
 
 namespace detail {
@@ -100,7 +105,7 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
     out.ran = true;
     auto cancelled = [&] { return opt.cancel && opt.cancel->load(); };
     auto progress = [&](const std::string& s, double f) { if (opt.progress) opt.progress("self-test: " + s, f); };
-    if (const std::string why = so.validate(); !why.empty()) { out.message = why; return out; }
+    if (const ParamIssues why = so.validate(); !why.empty()) { out.message = formatIssues(why); return out; }
     std::vector<double> r0;
     std::vector<NoiseBlock> blocks;
     if (!residualVector(cx, spec, base.values, fitIdx, r0, &blocks)) { out.message = "baseline residual failed"; return out; }

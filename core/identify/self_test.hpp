@@ -26,14 +26,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../param_table.hpp"
+
 namespace stickslip::identify {
 
 struct SelfTestOptions {
     int replicas = 0;                       // noise replicas per effect and level (0: no self-test)
     std::vector<double> levels = {0.5};     // injected signal RMS / baseline residual RMS
     std::map<std::string, double> sizes;    // effect -> stated value of its size parameter (replaces the levels)
-    // Empty when valid, else a message naming the field, the value and the allowed range.
-    std::string validate() const;
+    // Every problem, each naming the field, the value and the allowed range; empty when valid.
+    ParamIssues validate() const;
 };
 
 struct SelfTestRow {

@@ -42,24 +42,27 @@ SlipHistory SlipHistory::harmonic(const DriveParams& d, double cycles, double dt
     return h;
 }
 
-std::string SlipHistory::check() const {
-    if (t_s.size() < 2) return "slip history needs at least two samples";
-    if (slip_m.size() != t_s.size()) return "slip history: slip and time columns differ in length";
-    if (!velocity_mps.empty() && velocity_mps.size() != t_s.size()) return "slip history: velocity and time differ in length";
-    if (!normalForce_N.empty() && normalForce_N.size() != t_s.size()) return "slip history: normal force and time differ in length";
+ParamIssues SlipHistory::validate() const {
+    auto one = [](const char* field, std::string text) { return ParamIssues{ParamIssue::note(field, std::move(text))}; };
+    if (t_s.size() < 2) return one("t", "slip history needs at least two samples");
+    if (slip_m.size() != t_s.size()) return one("slip", "slip history: slip and time columns differ in length");
+    if (!velocity_mps.empty() && velocity_mps.size() != t_s.size())
+        return one("velocity", "slip history: velocity and time differ in length");
+    if (!normalForce_N.empty() && normalForce_N.size() != t_s.size())
+        return one("tN", "slip history: normal force and time differ in length");
     for (size_t i = 0; i < t_s.size(); ++i) {
         char buf[160];
         if (!std::isfinite(t_s[i]) || !std::isfinite(slip_m[i])) {
             std::snprintf(buf, sizeof buf, "slip history: non-finite value at sample %zu", i);
-            return buf;
+            return one("slip", buf);
         }
         if (i > 0 && !(t_s[i] > t_s[i - 1])) {
             std::snprintf(buf, sizeof buf, "slip history: time does not increase at sample %zu (t = %g s)", i, t_s[i]);
-            return buf;
+            return one("t", buf);
         }
         if (!normalForce_N.empty() && !(normalForce_N[i] > 0.0)) {
             std::snprintf(buf, sizeof buf, "slip history: normal force must be > 0, is %g at sample %zu", normalForce_N[i], i);
-            return buf;
+            return one("tN", buf);
         }
     }
     return {};
@@ -139,7 +142,7 @@ RunResult runPrescribed(const Law& law, double tNconst, const SlipHistory& h, in
 
 RunResult simulatePrescribed(const FrictionLaw& law, double tN, const SlipHistory& h, int substeps,
                              const RunControl& ctl, LawState initial) {
-    const std::string bad = h.check();
+    const std::string bad = formatIssues(h.validate());
     if (!bad.empty() || !(tN > 0.0) || substeps < 1) {
         RunResult r;
         r.status = RunStatus::Failed;

@@ -25,8 +25,9 @@ struct SlipHistory {
     // g = A sin(ω t + φ) sampled every dt_s over `cycles` periods (stage moving, slider held).
     static SlipHistory harmonic(const DriveParams& d, double cycles, double dt_s);
 
-    // Empty string if usable, else what is wrong (sizes, time not increasing, non-finite).
-    std::string check() const;
+    // Empty if usable, else what is wrong (sizes, time not increasing, non-finite): the first
+    // problem of each kind, naming the sample.
+    ParamIssues validate() const;
 };
 
 // Runs the law over the history with `substeps` equal steps per sample interval and

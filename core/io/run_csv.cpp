@@ -228,7 +228,7 @@ bool slipHistoryFromTable(const CsvTable& t, SlipHistory& out, CsvError& err) {
             return fail(t.rowLines[bad.row], t.cellColumn(bad.row, static_cast<size_t>(iv)), bad.message);
     }
     if (in >= 0) h.normalForce_N = t.columns[static_cast<size_t>(in)];
-    const std::string problem = h.check();
+    const std::string problem = formatIssues(h.validate());
     if (!problem.empty()) return fail(0, 0, problem);
     out = std::move(h);
     return true;

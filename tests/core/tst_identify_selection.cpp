@@ -124,6 +124,26 @@ private slots:
         sc.sizeCorrelation["b"] = 1.0;
         QCOMPARE(confoundedWith(sc, {"b"}, 10.0), std::string("b"));
     }
+    // The loop's options: every one out of range is named with its value and allowed range, the
+    // self-test's included; defaults are usable.
+    void optionsNameEveryBadField() {
+        IdentifyOptions o;
+        QVERIFY(o.validate().empty());
+        o.maxEffects = 0;
+        o.nullReplicas = 0;
+        QVERIFY(o.validate().empty());
+        o.confoundedVif = 1.0;
+        o.nullAlpha = 0.0;
+        o.heldOutAlpha = 1.5;
+        o.multistarts = 0;
+        o.selfTest.replicas = -3;
+        const ParamIssues bad = o.validate();
+        QCOMPARE(bad.size(), size_t(5));
+        const std::string all = formatIssues(bad);
+        for (const char* s : {"confounded_vif = 1 is out of range: must be > 1", "null_alpha = 0 is out of range: must be in (0, 1)",
+                              "held_out_alpha = 1.5", "multistarts = 0 is out of range: must be >= 1", "replicas = -3"})
+            QVERIFY2(all.find(s) != std::string::npos, qPrintable(QString::fromStdString(all)));
+    }
     void lawParametersAreTheContactOnes() {
         for (const char* n : {"mu", "C1", "eta", "Dc", "vc", "epsT", "backlash.halfWidth_m", "frictional_lag.tau_s"})
             QVERIFY2(lawParameter(n), n);

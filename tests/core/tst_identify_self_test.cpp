@@ -143,13 +143,13 @@ private slots:
     void badOptionsAreNamed() {
         SelfTestOptions s;
         s.replicas = -1;
-        QVERIFY(s.validate().find("replicas = -1") != std::string::npos);
+        QVERIFY(formatIssues(s.validate()).find("replicas = -1") != std::string::npos);
         s.replicas = 5;
         s.levels = {0.0};
-        QVERIFY(s.validate().find("level = 0") != std::string::npos);
+        QVERIFY(formatIssues(s.validate()).find("level = 0") != std::string::npos);
         s.levels = {0.5};
         s.sizes = {{"no_such_effect", 1.0}};
-        QVERIFY(s.validate().find("no_such_effect") != std::string::npos);
+        QVERIFY(formatIssues(s.validate()).find("no_such_effect") != std::string::npos);
         s.sizes = {{"backlash", 1.0}};  // 1 m: outside the physical range, known once the data are loaded
         QVERIFY(s.validate().empty());
         IdentifyOptions o = selfTestOptions({}, 2);

@@ -192,10 +192,10 @@ private slots:
     void rejectsABadSlipStartFraction() {
         PredictSettings ps;
         ps.slipStartFraction = 1.5;
-        const std::vector<std::string> bad = ps.validate();
+        const ParamIssues bad = ps.validate();
         QCOMPARE(bad.size(), size_t(1));
-        QVERIFY(bad.front().find("slip start fraction") != std::string::npos);
-        QVERIFY(bad.front().find("[0, 1)") != std::string::npos);
+        QVERIFY(bad.front().message().find("slip start fraction") != std::string::npos);
+        QVERIFY(bad.front().message().find("[0, 1)") != std::string::npos);
         ps.slipStartFraction = 0.0;
         QVERIFY(ps.validate().empty());
     }

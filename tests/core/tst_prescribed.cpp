@@ -208,20 +208,20 @@ private slots:
         QCOMPARE(v.slip_m[1], 0.5 + 2.0);     // trapezoid (1+3)/2·1
         QCOMPARE(v.slip_m[2], 0.5 + 2.0 + 3.0);
         QCOMPARE(v.slip_m[3], 0.5 + 5.0 + 2.0);  // (3−1)/2·2
-        QVERIFY(v.check().empty());
+        QVERIFY(v.validate().empty());
         DriveParams d;
         d.amplitude_m = 2e-3;
         const SlipHistory h = SlipHistory::harmonic(d, 2, d.period() / 100);
         QCOMPARE(h.t_s.size(), size_t(201));
         QVERIFY(std::abs(h.slip_m[25] - 2e-3) < 1e-15);  // quarter period
         QVERIFY(std::abs(h.velocity_mps[0] - 2e-3 * d.omega()) < 1e-15);
-        QVERIFY(SlipHistory::fromSlip({0.0, 1.0, 1.0}, {0, 0, 0}).check().find("time does not increase") != std::string::npos);
-        QVERIFY(!SlipHistory::fromSlip({0.0}, {0}).check().empty());
-        QVERIFY(!SlipHistory::fromSlip({0.0, 1.0}, {0}).check().empty());
-        QVERIFY(SlipHistory::fromSlip({0.0, 1.0}, {0, std::nan("")}).check().find("non-finite") != std::string::npos);
+        QVERIFY(formatIssues(SlipHistory::fromSlip({0.0, 1.0, 1.0}, {0, 0, 0}).validate()).find("time does not increase") != std::string::npos);
+        QVERIFY(!SlipHistory::fromSlip({0.0}, {0}).validate().empty());
+        QVERIFY(!SlipHistory::fromSlip({0.0, 1.0}, {0}).validate().empty());
+        QVERIFY(formatIssues(SlipHistory::fromSlip({0.0, 1.0}, {0, std::nan("")}).validate()).find("non-finite") != std::string::npos);
         SlipHistory n = SlipHistory::fromSlip({0.0, 1.0}, {0, 1e-3});
         n.normalForce_N = {6.2, -1.0};
-        QVERIFY(n.check().find("normal force") != std::string::npos);
+        QVERIFY(formatIssues(n.validate()).find("normal force") != std::string::npos);
         // A bad history or t_N is a Failed run with the reason, not a crash.
         const RunResult r = simulatePrescribed(CoulombLaw{CoulombParams{}}, 6.2, SlipHistory::fromSlip({0.0, 0.0}, {0, 0}), 1);
         QVERIFY(r.status == RunStatus::Failed && contains(r.message, "time does not increase"));

@@ -150,7 +150,7 @@ private slots:
         QCOMPARE(h.slip_m[2], 3.0);
         QCOMPARE(h.velocity_mps[2], 2.0);
         QCOMPARE(h.normalForce_N[2], 6.0);
-        QVERIFY(h.check().empty());
+        QVERIFY(h.validate().empty());
     }
 
     void slipHistoryErrors() {
@@ -189,7 +189,7 @@ private slots:
         CsvError e;
         QVERIFY2(readSlipHistoryCsv(path, h, e), e.what().c_str());
         QVERIFY(h.t_s.size() > 1000);
-        QVERIFY(h.check().empty());
+        QVERIFY(h.validate().empty());
         double maxAbs = 0;
         for (double g : h.slip_m) maxAbs = std::max(maxAbs, std::abs(g));
         // Nominal amplitude 0.5 in = 12.7 mm (the drive is tapered; allow a wide band).
