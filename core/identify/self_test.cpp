@@ -3,9 +3,11 @@
 #include "self_test.hpp"
 
 #include <chrono>
+#include <algorithm>
 #include <cstdio>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "identify_internal.hpp"
 
@@ -94,73 +96,140 @@ struct Injection {
     std::string note;
 };
 
-}  // namespace
+// One row of the table: an effect at a level (−1: its stated size), and the injection found for it.
+struct Job {
+    size_t cand;
+    double level;
+    Injection inj;
+};
 
-SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome& base, const std::vector<size_t>& fitIdx,
-                           const std::vector<std::string>& cands, double neffCap) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const IdentifyOptions& opt = *cx.opt;
-    const SelfTestOptions& so = opt.selfTest;
+// The selection with a baseline column held on its bound, and every candidate refitted without it.
+struct Held {
+    Selector sel;
+    std::vector<LinearCandidate> lin;
+};
+
+// One self-test: the state its phases share (the baseline's residual, noise blocks and Jacobian,
+// the candidates linearised around it, the rows), one method per phase. A phase that stops the
+// test returns false with out.message set; `out` then holds what was done so far.
+struct SelfTestRun {
+    const std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+    const Context& cx;
+    const Spec& spec;
+    const FitOutcome& base;
+    const std::vector<size_t>& fitIdx;
+    const std::vector<std::string>& cands;
+    const double neffCap;
+    const IdentifyOptions& opt;
+    const SelfTestOptions& so;
+    const uint64_t nullSeed, replicaSeed;
     SelfTestResult out;
-    out.ran = true;
-    auto cancelled = [&] { return opt.cancel && opt.cancel->load(); };
-    auto progress = [&](const std::string& s, double f) { if (opt.progress) opt.progress("self-test: " + s, f); };
-    if (const ParamIssues why = so.validate(); !why.empty()) { out.message = formatIssues(why); return out; }
-    std::vector<double> r0;
-    std::vector<NoiseBlock> blocks;
-    if (!residualVector(cx, spec, base.values, fitIdx, r0, &blocks)) { out.message = "baseline residual failed"; return out; }
-    const size_t n = r0.size();
-    std::vector<char> used(n, 0);
-    for (const NoiseBlock& b : blocks)
-        for (size_t k = 0; k < b.length; ++k) used[b.offset + k] = b.used[k];
-    double ss0 = 0, count = 0;
-    for (size_t k = 0; k < n; ++k)
-        if (used[k]) { ss0 += r0[k] * r0[k]; count += 1; }
-    if (count < 2) { out.message = "no compared samples"; return out; }
-    out.noiseRms = std::sqrt(ss0 / count);
-    out.nullReplicas = opt.nullReplicas;
-    out.neff = std::max(std::min(count, neffCap), 2.0);
+    std::vector<double> r0;                     // the baseline's residual
+    std::vector<NoiseBlock> blocks;             // its runs and channels, for the noise replicas
+    size_t n = 0;                               // residual length
+    std::vector<char> used;                     // compared samples
+    double count = 0;                           // how many
+    std::vector<std::string> baseNames;         // the baseline's free parameters (J0's columns)
+    Eigen::MatrixXd J0;
+    std::vector<Eigen::Index> allCols;
+    Selector sel;                               // the selection with the whole baseline
+    std::vector<LinearCandidate> lin;           // each candidate at its start
+    std::vector<Eigen::Index> heldCol;          // per candidate: the baseline column it holds (−1: none)
+    std::vector<std::vector<double>> reference; // per candidate: the residual its injection is measured from
+    std::vector<Job> jobs;
+    std::vector<const LinearCandidate*> all;
+    std::vector<Vec> noises;
+    std::map<Eigen::Index, Held> heldCache;
 
-    progress("baseline Jacobian", 0.0);
-    const std::vector<FitParameter> ps0 = parameters(cx, spec, base.values);
-    std::vector<std::string> baseNames;
-    for (const FitParameter& p : ps0)
-        if (p.free) baseNames.push_back(p.name);
-    const Eigen::MatrixXd J0 = residualJacobian(cx, spec, base.values, fitIdx, ps0, baseNames, n);
-    const uint64_t nullSeed = opt.seed + 6151u, replicaSeed = opt.seed + 104729u;
+    SelfTestRun(const Context& cx_, const Spec& spec_, const FitOutcome& base_, const std::vector<size_t>& fitIdx_,
+                const std::vector<std::string>& cands_, double neffCap_)
+        : cx(cx_), spec(spec_), base(base_), fitIdx(fitIdx_), cands(cands_), neffCap(neffCap_), opt(*cx_.opt),
+          so(opt.selfTest), nullSeed(opt.seed + 6151u), replicaSeed(opt.seed + 104729u) {}
+
+    bool cancelled() const { return opt.cancel && opt.cancel->load(); }
+    void progress(const std::string& s, double f) const { if (opt.progress) opt.progress("self-test: " + s, f); }
+    bool stop(std::string why) { out.message = std::move(why); return false; }
+
+    // The phases in order; out.ok only when all of them ran to the end.
+    void run() {
+        out.ran = true;
+        if (const ParamIssues why = so.validate(); !why.empty()) { out.message = formatIssues(why); return; }
+        if (!baselineResidual()) return;
+        baselineJacobian();
+        if (!lineariseAll() || !holdAll() || !checkSizes()) return;
+        makeJobs();
+        if (!findSizes()) return;
+        dropDuplicates();
+        makeNoises();
+        if (!runRows() || !falseAlarms()) return;
+        out.ok = true;
+        out.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+
+    // The baseline's residual, its noise blocks and compared samples: the noise level every size
+    // and SNR is measured against.
+    bool baselineResidual() {
+        if (!residualVector(cx, spec, base.values, fitIdx, r0, &blocks)) return stop("baseline residual failed");
+        n = r0.size();
+        used.assign(n, 0);
+        for (const NoiseBlock& b : blocks)
+            for (size_t k = 0; k < b.length; ++k) used[b.offset + k] = b.used[k];
+        double ss0 = 0;
+        for (size_t k = 0; k < n; ++k)
+            if (used[k]) { ss0 += r0[k] * r0[k]; count += 1; }
+        if (count < 2) return stop("no compared samples");
+        out.noiseRms = std::sqrt(ss0 / count);
+        out.nullReplicas = opt.nullReplicas;
+        out.neff = std::max(std::min(count, neffCap), 2.0);
+        return true;
+    }
+
+    // The baseline's Jacobian over its free parameters, and the selection with all of them.
+    void baselineJacobian() {
+        progress("baseline Jacobian", 0.0);
+        const std::vector<FitParameter> ps0 = parameters(cx, spec, base.values);
+        for (const FitParameter& p : ps0)
+            if (p.free) baseNames.push_back(p.name);
+        J0 = residualJacobian(cx, spec, base.values, fitIdx, ps0, baseNames, n);
+        allCols.resize(baseNames.size());
+        for (size_t j = 0; j < allCols.size(); ++j) allCols[j] = static_cast<Eigen::Index>(j);
+        sel = makeSelector(-1);
+    }
+
     // The baseline's columns without `held` (−1: all of them): a baseline parameter on its bound
     // cannot absorb more.
-    auto baseColumns = [&](const std::vector<Eigen::Index>& cols, Eigen::Index held) {
+    Eigen::MatrixXd baseColumns(const std::vector<Eigen::Index>& cols, Eigen::Index held) const {
         std::vector<Eigen::Index> keep;
         for (Eigen::Index c : cols)
             if (c != held) keep.push_back(c);
         Eigen::MatrixXd M(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(keep.size()));
         for (size_t j = 0; j < keep.size(); ++j) M.col(static_cast<Eigen::Index>(j)) = J0.col(keep[j]);
         return M;
-    };
-    std::vector<Eigen::Index> allCols(baseNames.size());
-    for (size_t j = 0; j < allCols.size(); ++j) allCols[j] = static_cast<Eigen::Index>(j);
-    auto makeSelector = [&](Eigen::Index held) {
-        Selector sel;
+    }
+
+    // The selection on the baseline without column `held` (−1: the whole baseline).
+    Selector makeSelector(Eigen::Index held) const {
+        Selector s;
         const Eigen::MatrixXd B = baseColumns(allCols, held);
-        sel.base = projectionBases(Eigen::MatrixXd(static_cast<Eigen::Index>(n), 0), B);
-        sel.baseParams = static_cast<int>(B.cols());
-        sel.count = count;
-        sel.cap = neffCap;
-        sel.margin = opt.bicMargin;
-        sel.useNull = opt.nullReplicas > 0;
-        return sel;
-    };
-    auto finish = [&](LinearCandidate& lc, Eigen::Index held) {
+        s.base = projectionBases(Eigen::MatrixXd(static_cast<Eigen::Index>(n), 0), B);
+        s.baseParams = static_cast<int>(B.cols());
+        s.count = count;
+        s.cap = neffCap;
+        s.margin = opt.bicMargin;
+        s.useNull = opt.nullReplicas > 0;
+        return s;
+    }
+
+    // A candidate's bases, parameter count and null quantile, fitted with its baseline columns but `held`.
+    void finish(LinearCandidate& lc, Eigen::Index held) const {
         const Eigen::MatrixXd J0c = baseColumns(lc.baseCols, held);
         lc.bases = projectionBases(J0c, lc.Jc);
         lc.params = static_cast<int>(J0c.cols() + lc.Jc.cols());
         lc.nullQuantile = opt.nullReplicas > 0 ? projectionGainNull(lc.bases, blocks, n, opt.nullReplicas, nullSeed).quantile(1.0 - opt.nullAlpha) : 0.0;
-    };
-    const Selector sel = makeSelector(-1);
+    }
 
     // The candidate `c` linearised at `vals` (its effect parameters included).
-    auto linearise = [&](const std::string& c, const std::map<std::string, double>& vals, LinearCandidate& lc) {
+    void linearise(const std::string& c, const std::map<std::string, double>& vals, LinearCandidate& lc) const {
         Spec s2 = spec;
         s2.effects.push_back(c);
         const std::vector<FitParameter> ps = parameters(cx, s2, vals);
@@ -175,18 +244,23 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         lc.Jc = residualJacobian(cx, s2, vals, fitIdx, ps, effNames, n);
         lc.name = c;
         finish(lc, -1);
-    };
-    std::vector<LinearCandidate> lin(cands.size());
-    for (size_t i = 0; i < cands.size(); ++i) {
-        if (cancelled()) { out.message = "cancelled"; return out; }
-        progress("linearising " + cands[i], static_cast<double>(i) / cands.size());
-        linearise(cands[i], effectStart(cx, cands[i], base.values), lin[i]);
+    }
+
+    // Every candidate linearised at its start: the rivals of the injected effect in each replica.
+    bool lineariseAll() {
+        lin.resize(cands.size());
+        for (size_t i = 0; i < cands.size(); ++i) {
+            if (cancelled()) return stop("cancelled");
+            progress("linearising " + cands[i], static_cast<double>(i) / cands.size());
+            linearise(cands[i], effectStart(cx, cands[i], base.values), lin[i]);
+        }
+        return true;
     }
 
     // The baseline parameter an effect continues beyond the baseline's range (viscous_damping's
     // ζ in the dynamics set-up): the baseline meets the effect at that parameter's bound, so the
     // injection is measured from the baseline moved there, and the parameter cannot absorb more.
-    auto heldFor = [&](const std::string& c, Eigen::Index& col, std::vector<double>& rRef) {
+    bool heldFor(const std::string& c, Eigen::Index& col, std::vector<double>& rRef) const {
         EffectInfo info;
         findEffect(c, info);
         const EffectParam& q = info.params.front();
@@ -199,16 +273,21 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         std::map<std::string, double> vals = base.values;
         vals[q.continues] = bound;
         return residualVector(cx, spec, vals, fitIdx, rRef) && rRef.size() == n;
-    };
-    std::vector<Eigen::Index> heldCol(cands.size(), -1);
-    std::vector<std::vector<double>> reference(cands.size());
-    for (size_t i = 0; i < cands.size(); ++i) {
-        if (!heldFor(cands[i], heldCol[i], reference[i])) { out.message = "baseline at the bound of " + cands[i] + " failed"; return out; }
-        if (heldCol[i] < 0) reference[i] = r0;
+    }
+
+    // Per candidate the held column and the reference residual (the baseline's own when none).
+    bool holdAll() {
+        heldCol.assign(cands.size(), -1);
+        reference.resize(cands.size());
+        for (size_t i = 0; i < cands.size(); ++i) {
+            if (!heldFor(cands[i], heldCol[i], reference[i])) return stop("baseline at the bound of " + cands[i] + " failed");
+            if (heldCol[i] < 0) reference[i] = r0;
+        }
+        return true;
     }
 
     // The injected signal r(baseline + effect at size) − r(reference) on the compared samples.
-    auto inject = [&](size_t ci, double size, Injection& inj) {
+    void inject(size_t ci, double size, Injection& inj) const {
         const std::string& c = cands[ci];
         EffectInfo info;
         findEffect(c, info);
@@ -226,37 +305,35 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         for (size_t k = 0; k < n; ++k)
             if (used[k]) { inj.signal[k] = r[k] - ref[k]; ss += inj.signal[k] * inj.signal[k]; }
         inj.rms = std::sqrt(ss / count);
-    };
+    }
+
+    // A stated size must name a candidate and lie within its parameter's physical range.
+    bool checkSizes() {
+        for (const auto& [name, v] : so.sizes) {
+            EffectInfo info;
+            findEffect(name, info);
+            const EffectParam q = scaledParam(info.params.front(), cx.muScale);
+            if (std::find(cands.begin(), cands.end(), name) == cands.end())
+                return stop("self-test size given for " + name + ", which is not among the candidates");
+            if (!(v >= q.lower && v <= q.upper))
+                return stop("self-test size of " + name + "." + q.name + " = " + std::to_string(v) + " " + q.unit +
+                            " is outside its physical range [" + std::to_string(q.lower) + ", " + std::to_string(q.upper) + "]");
+        }
+        return true;
+    }
 
     // One row per effect and level (or stated size).
-    struct Job {
-        size_t cand;
-        double level;
-        Injection inj;
-    };
-    std::vector<Job> jobs;
-    for (const auto& [name, v] : so.sizes) {
-        EffectInfo info;
-        findEffect(name, info);
-        const EffectParam q = scaledParam(info.params.front(), cx.muScale);
-        if (std::find(cands.begin(), cands.end(), name) == cands.end()) {
-            out.message = "self-test size given for " + name + ", which is not among the candidates";
-            return out;
-        }
-        if (!(v >= q.lower && v <= q.upper)) {
-            out.message = "self-test size of " + name + "." + q.name + " = " + std::to_string(v) + " " + q.unit +
-                          " is outside its physical range [" + std::to_string(q.lower) + ", " + std::to_string(q.upper) + "]";
-            return out;
+    void makeJobs() {
+        for (size_t i = 0; i < cands.size(); ++i) {
+            if (so.sizes.count(cands[i])) jobs.push_back({i, -1.0, {}});
+            else
+                for (double l : so.levels) jobs.push_back({i, l, {}});
         }
     }
-    for (size_t i = 0; i < cands.size(); ++i) {
-        if (so.sizes.count(cands[i])) jobs.push_back({i, -1.0, {}});
-        else
-            for (double l : so.levels) jobs.push_back({i, l, {}});
-    }
-    progress("sizes", 0.0);
-    parallelFor(jobs.size(), [&](size_t j) {
-        Job& job = jobs[j];
+
+    // The row's injection: at the stated size, or the size whose signal reaches the level (by
+    // bisection between the vanishing value and the physical bound; the bound when it does not).
+    void findSize(Job& job) const {
         const std::string& c = cands[job.cand];
         EffectInfo info;
         findEffect(c, info);
@@ -285,10 +362,18 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
             else { up = mid; job.inj = std::move(m); }
             if (std::abs(job.inj.rms - target) < 0.01 * target) break;
         }
-    });
-    if (cancelled()) { out.message = "cancelled"; return out; }
+    }
+
+    // Every row's injection, the rows in parallel (each writes only its own job).
+    bool findSizes() {
+        progress("sizes", 0.0);
+        parallelFor(jobs.size(), [&](size_t j) { findSize(jobs[j]); });
+        if (cancelled()) return stop("cancelled");
+        return true;
+    }
+
     // Levels beyond what the physical range reaches all end on the bound: one row for them.
-    {
+    void dropDuplicates() {
         std::vector<Job> kept;
         for (Job& j : jobs) {
             const bool dup = std::any_of(kept.begin(), kept.end(), [&](const Job& k) {
@@ -299,22 +384,18 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         jobs = std::move(kept);
     }
 
-    std::vector<const LinearCandidate*> all;
-    for (const LinearCandidate& lc : lin) all.push_back(&lc);
     // The noise replicas every row uses (the same seeds for every effect and level).
-    std::vector<Vec> noises;
-    for (int b = 0; b < so.replicas; ++b) {
-        const std::vector<double> e = noiseReplica(blocks, n, replicaSeed + static_cast<uint64_t>(b));
-        noises.push_back(Eigen::Map<const Vec>(e.data(), static_cast<Eigen::Index>(n)));
+    void makeNoises() {
+        for (const LinearCandidate& lc : lin) all.push_back(&lc);
+        for (int b = 0; b < so.replicas; ++b) {
+            const std::vector<double> e = noiseReplica(blocks, n, replicaSeed + static_cast<uint64_t>(b));
+            noises.push_back(Eigen::Map<const Vec>(e.data(), static_cast<Eigen::Index>(n)));
+        }
     }
+
     // Per baseline column held on its bound: the selection without it, and every candidate refitted
     // without it (made once, for all the levels of the effect that holds it).
-    struct Held {
-        Selector sel;
-        std::vector<LinearCandidate> lin;
-    };
-    std::map<Eigen::Index, Held> heldCache;
-    auto heldSelection = [&](Eigen::Index col) -> const Held& {
+    const Held& heldSelection(Eigen::Index col) {
         auto it = heldCache.find(col);
         if (it == heldCache.end()) {
             Held h{makeSelector(col), lin};
@@ -322,12 +403,11 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
             it = heldCache.emplace(col, std::move(h)).first;
         }
         return it->second;
-    };
-    for (size_t j = 0; j < jobs.size(); ++j) {
-        if (cancelled()) { out.message = "cancelled"; return out; }
-        Job& job = jobs[j];
+    }
+
+    // The row's description: effect, size parameter, level and the note on how its size was reached.
+    SelfTestRow describeRow(const Job& job) const {
         const std::string& c = cands[job.cand];
-        progress("replicas of " + c, static_cast<double>(j) / jobs.size());
         EffectInfo info;
         findEffect(c, info);
         SelfTestRow row;
@@ -338,10 +418,18 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         row.note = job.inj.note;
         if (row.note.empty() && job.level > 0 && std::abs(job.inj.rms / out.noiseRms - job.level) > 0.1 * job.level)
             row.note = "nearest size within the physical range";
+        return row;
+    }
+
+    // One row: the selection's pick on each noise replica with the injected signal, the injected
+    // candidate linearised at its size and the rivals at their starts (without the held column).
+    void runRow(Job& job) {
+        const std::string& c = cands[job.cand];
+        SelfTestRow row = describeRow(job);
         if (!job.inj.ok) {
             row.note = "the model with the effect could not be simulated";
             out.rows.push_back(row);
-            continue;
+            return;
         }
         row.size = job.inj.size;
         row.signalRms = job.inj.rms;
@@ -374,19 +462,39 @@ SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome
         }
         out.rows.push_back(std::move(row));
     }
-    // False alarms: replicas of the baseline with noise only (as many as all effects' replicas of one level).
-    progress("replicas without an effect", 1.0);
-    const int nNull = so.replicas * static_cast<int>(std::max<size_t>(cands.size(), 1));
-    for (int b = 0; b < nNull && !cancelled(); ++b) {
-        const std::vector<double> noise = noiseReplica(blocks, n, replicaSeed + 500009u + static_cast<uint64_t>(b));
-        const int p = sel.pick(Eigen::Map<const Vec>(noise.data(), static_cast<Eigen::Index>(n)), all);
-        ++out.falseAlarmReplicas;
-        if (p >= 0) { ++out.falseAlarms; ++out.falseAlarmsBy[cands[static_cast<size_t>(p)]]; }
+
+    // Every row in order, cancellable between rows.
+    bool runRows() {
+        for (size_t j = 0; j < jobs.size(); ++j) {
+            if (cancelled()) return stop("cancelled");
+            progress("replicas of " + cands[jobs[j].cand], static_cast<double>(j) / jobs.size());
+            runRow(jobs[j]);
+        }
+        return true;
     }
-    if (cancelled()) { out.message = "cancelled"; return out; }
-    out.ok = true;
-    out.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return out;
+
+    // False alarms: replicas of the baseline with noise only (as many as all effects' replicas of one level).
+    bool falseAlarms() {
+        progress("replicas without an effect", 1.0);
+        const int nNull = so.replicas * static_cast<int>(std::max<size_t>(cands.size(), 1));
+        for (int b = 0; b < nNull && !cancelled(); ++b) {
+            const std::vector<double> noise = noiseReplica(blocks, n, replicaSeed + 500009u + static_cast<uint64_t>(b));
+            const int p = sel.pick(Eigen::Map<const Vec>(noise.data(), static_cast<Eigen::Index>(n)), all);
+            ++out.falseAlarmReplicas;
+            if (p >= 0) { ++out.falseAlarms; ++out.falseAlarmsBy[cands[static_cast<size_t>(p)]]; }
+        }
+        if (cancelled()) return stop("cancelled");
+        return true;
+    }
+};
+
+}  // namespace
+
+SelfTestResult runSelfTest(const Context& cx, const Spec& spec, const FitOutcome& base, const std::vector<size_t>& fitIdx,
+                           const std::vector<std::string>& cands, double neffCap) {
+    SelfTestRun st(cx, spec, base, fitIdx, cands, neffCap);
+    st.run();
+    return std::move(st.out);
 }
 
 }  // namespace detail
