@@ -12,7 +12,9 @@
 //     memory (getrusage ru_maxrss).
 // Usage: bench_sweep [--steps-per-period N (8000)] [--values N (300)] [--threads N (0 = all)]
 //                    [--sequential | --compare] [--lyapunov] [--section-points N (40000)]
-//                    [--skip-sweep] [--skip-section]
+//                    [--skip-sweep] [--skip-section] [--tolerance TOL (0: fixed step)]
+// With --tolerance the runs are error-controlled (section_stepping.hpp): the step count is the
+// integrator's, not cycles x N, so only wall/CPU time and cycles per second are printed.
 // (8000 steps per period: the step bench_core finds for 1e-3 error/amplitude.)
 #include <sys/resource.h>
 
@@ -135,9 +137,10 @@ double load1() {
     return getloadavg(l, 1) == 1 ? l[0] : -1.0;
 }
 
-SweepResult runFig20Sweep(int values, long n, int threads, bool concurrent, bool lyapunov) {
+SweepResult runFig20Sweep(int values, long n, int threads, bool concurrent, bool lyapunov, double tolerance) {
     Preset pr;
     findPreset("fig20", pr);
+    pr.params.integration.tolerance = tolerance;
     SweepOptions o;
     o.key = "A";
     o.from = 0.1e-3;
@@ -161,18 +164,25 @@ SweepResult runFig20Sweep(int values, long n, int threads, bool concurrent, bool
     // With the Lyapunov exponent the companion trajectory adds the 100 sampled cycles again.
     const double cycles = 2.0 * values * (lyapunov ? 250.0 : 150.0) + (concurrent ? 150.0 : 0.0);
     const double steps = cycles * static_cast<double>(n);
+    char stepping[64];
+    if (tolerance > 0) std::snprintf(stepping, sizeof stepping, "adaptive, tolerance %g", tolerance);
+    else std::snprintf(stepping, sizeof stepping, "T/%ld", n);
     std::printf("Fig. 20 continuation sweep (fig20 preset, eps_T = 1.1e4 N/m): A 0.1-5 mm, %d values, "
-                "50 settle + 100 sampled cycles, up and down, T/%ld\n",
-                values, n);
+                "50 settle + 100 sampled cycles, up and down, %s\n",
+                values, stepping);
     std::printf("  Lyapunov exponent: %s\n", lyapunov ? (concurrent ? "yes, companion on the branch's thread"
                                                                    : "yes, companion on a second thread")
                                                         : "no");
     std::printf("  branches: %s\n", concurrent ? "concurrent (down branch from rest at 5 mm after a 150-cycle lead-in)"
                                                : "sequential (down branch continues from the end of the up branch)");
     std::printf("  status %s%s\n", toString(r.status), r.message.empty() ? "" : (" (" + r.message + ")").c_str());
-    std::printf("  wall time %.2f s, CPU time %.2f s, threads used %d, %.3g steps, %.1f ns (CPU) per step, "
-                "%.0f cycles per wall second\n",
-                wall, cpu, used, steps, cpu / steps * 1e9, cycles / wall);
+    if (tolerance > 0)
+        std::printf("  wall time %.2f s, CPU time %.2f s, threads used %d, %.0f cycles per wall second\n", wall, cpu,
+                    used, cycles / wall);
+    else
+        std::printf("  wall time %.2f s, CPU time %.2f s, threads used %d, %.3g steps, %.1f ns (CPU) per step, "
+                    "%.0f cycles per wall second\n",
+                    wall, cpu, used, steps, cpu / steps * 1e9, cycles / wall);
     std::printf("  load average (1 min) before %.2f, after %.2f\n", loadBefore, load1());
     printWindows(r, +1);
     printWindows(r, -1);
@@ -185,6 +195,7 @@ SweepResult runFig20Sweep(int values, long n, int threads, bool concurrent, bool
 
 int main(int argc, char** argv) {
     long n = 8000, sectionPoints = 40000;
+    double tolerance = 0.0;
     int values = 300, threads = 0;
     bool sweep = true, section = true, sequential = false, compare = false, lyapunov = false;
     for (int i = 1; i < argc; ++i) {
@@ -195,6 +206,7 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--sequential")) sequential = true;
         else if (!std::strcmp(argv[i], "--compare")) compare = true;
         else if (!std::strcmp(argv[i], "--lyapunov")) lyapunov = true;
+        else if (!std::strcmp(argv[i], "--tolerance") && i + 1 < argc) tolerance = std::atof(argv[++i]);
         else if (!std::strcmp(argv[i], "--skip-sweep")) sweep = false;
         else if (!std::strcmp(argv[i], "--skip-section")) section = false;
         else { std::fprintf(stderr, "unknown argument %s\n", argv[i]); return 2; }
@@ -208,16 +220,17 @@ int main(int argc, char** argv) {
         findPreset("fig20", pr);
         std::printf("closed-form stick threshold A_s = %.4f mm\n", stickThresholdAmplitude(pr.params) * 1e3);
         if (compare) {
-            const SweepResult seq = runFig20Sweep(values, n, threads, false, lyapunov);
-            const SweepResult conc = runFig20Sweep(values, n, threads, true, lyapunov);
+            const SweepResult seq = runFig20Sweep(values, n, threads, false, lyapunov, tolerance);
+            const SweepResult conc = runFig20Sweep(values, n, threads, true, lyapunov, tolerance);
             compareDownBranches(seq, conc);
         } else {
-            runFig20Sweep(values, n, threads, !sequential, lyapunov);
+            runFig20Sweep(values, n, threads, !sequential, lyapunov, tolerance);
         }
     }
     if (section) {
         Preset pr;
         findPreset("fig22", pr);
+        pr.params.integration.tolerance = tolerance;
         PoincareOptions o;
         o.stepsPerPeriod = n;
         o.settleCycles = 50;
@@ -227,8 +240,13 @@ int main(int argc, char** argv) {
         const double c0 = cpuSeconds();
         const PoincareSection s = poincareSection(pr.params, o);
         const double wall = seconds(t0), cpu = cpuSeconds() - c0;
-        std::printf("Poincare section, Fig. 22 set (A = %.2f mm): %ld points after 50 settle cycles, T/%ld\n",
-                    pr.params.drive.amplitude_m * 1e3, sectionPoints, n);
+        if (tolerance > 0)
+            std::printf("Poincare section, Fig. 22 set (A = %.2f mm): %ld points after 50 settle cycles, adaptive, "
+                        "tolerance %g (samples from the dense output)\n",
+                        pr.params.drive.amplitude_m * 1e3, sectionPoints, tolerance);
+        else
+            std::printf("Poincare section, Fig. 22 set (A = %.2f mm): %ld points after 50 settle cycles, T/%ld\n",
+                        pr.params.drive.amplitude_m * 1e3, sectionPoints, n);
         std::printf("  status %s, %zu points\n", toString(s.status), s.size());
         std::printf("  wall time %.2f s, CPU time %.2f s, peak RSS %.1f MB (before the section: %.1f MB)\n", wall, cpu,
                     peakRssKiB() / 1024.0, before / 1024.0);

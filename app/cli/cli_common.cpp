@@ -6,6 +6,7 @@
 #include "core/io/units.hpp"
 #include "mpi_runner.hpp"
 #include "core/presets.hpp"
+#include "core/analysis/poincare.hpp"
 
 #include "core/friction/friction_law.hpp"
 
@@ -35,6 +36,20 @@ void addSimOptions(CLI::App* cmd, SimOptions& o) {
         ->type_name("N");
 }
 
+void addToleranceOption(CLI::App* cmd, SimOptions& o, const std::string& samples) {
+    cmd->add_option("--tolerance", o.tolerance,
+                    "Integrate adaptively to this relative displacement error (1e-5 to 0.5; dynamics set-up): "
+                    "error-controlled steps, stick-slip switches located, " + samples + ". Default: the fixed step --dt")
+        ->type_name("TOL");
+}
+
+std::string steppingText(const SimParams& p, long requestedStepsPerPeriod) {
+    if (p.integration.tolerance > 0.0)
+        return "integration = adaptive, tolerance = " + exactNumber(p.integration.tolerance) +
+               " (samples at the exact phase from the dense output)";
+    return "steps per period = " + std::to_string(stepsPerPeriodFor(p, requestedStepsPerPeriod));
+}
+
 int buildSimParams(const SimOptions& o, SimParams& out, std::string* error) {
     return simParamsFromOptions(o, out, error) ? kOk : kBadArguments;
 }
@@ -52,7 +67,8 @@ std::string simSettingsText(const SimOptions& o, const SimParams& p) {
         double v = 0;
         if (getParam(p, k, v)) t += k + " " + exactNumber(v) + "\n";
     }
-    return t + "law " + toString(p.law) + "\nsetup " + toString(p.setup) + "\n";
+    return t + "law " + toString(p.law) + "\nsetup " + toString(p.setup) + "\ntolerance " +
+           exactNumber(p.integration.tolerance) + "\n";
 }
 
 void reportError(const std::string& command, const std::string& message, int code, int& exitCode) {

@@ -21,6 +21,14 @@ using stickslip::presetNames;
 // Registers the options above on `cmd`.
 void addSimOptions(CLI::App* cmd, SimOptions& o);
 
+// --tolerance TOL (SimOptions::tolerance): error-controlled steps instead of the fixed dt, for
+// the commands that run the spring-mass rig; `samples` says what the dense output gives there.
+void addToleranceOption(CLI::App* cmd, SimOptions& o, const std::string& samples);
+
+// How a section's runs are stepped, for output headers: "steps per period = N" or
+// "integration = adaptive, tolerance = TOL (samples at the exact phase from the dense output)".
+std::string steppingText(const SimParams& p, long requestedStepsPerPeriod);
+
 // simParamsFromOptions (core/run_options.hpp) with the CLI exit codes: returns kOk, or kBadArguments with a message naming
 // the key, value and allowed range in *error (all violated fields, one per line).
 int buildSimParams(const SimOptions& o, SimParams& out, std::string* error);

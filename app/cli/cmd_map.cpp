@@ -54,8 +54,7 @@ std::string mapCsv(const MapCliOptions& o, const std::string& u1, const std::str
                    const MapOptions& mo, const PeriodicityMap& m) {
     std::string csv = std::string("# stickslip-cli ") + kVersion + " map\n# param = " + o.param + " [" + u1 +
                       "]\n# param2 = " + o.param2 + " [" + u2 + "]\n# settle = " + std::to_string(mo.settleCycles) +
-                      " cycles, samples = " + std::to_string(mo.sampleCycles) + ", steps per period = " +
-                      std::to_string(stepsPerPeriodFor(p, mo.stepsPerPeriod)) + ", period tolerance = " +
+                      " cycles, samples = " + std::to_string(mo.sampleCycles) + ", " + steppingText(p, mo.stepsPerPeriod) + ", period tolerance = " +
                       num(mo.classify.relTol) + "\n# status = " + toString(m.status) +
                       (m.message.empty() ? "" : " (" + m.message + ")") + "\n";
     csv += "param_value,param2_value,class,period,stick_fraction,max_rel_vel_mps\n";
@@ -166,6 +165,7 @@ void addMapCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--samples", opts->samples, "Poincare samples per cell")->capture_default_str();
     cmd->add_option("--steps-per-period", opts->stepsPerPeriod, "Time steps per forcing period (0 = from --dt)")
         ->capture_default_str();
+    addToleranceOption(cmd, opts->sim, "Poincare samples at the exact phase from the dense output; not --tol, the period test");
     cmd->add_option("--threads", opts->threads, "Threads per process (0 = all cores; under mpirun per rank)")
         ->capture_default_str();
     cmd->add_option("--tol", opts->tol, "Relative tolerance of the period test")->capture_default_str();

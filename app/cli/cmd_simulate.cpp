@@ -95,11 +95,7 @@ void addSimulateCommand(CLI::App& root, int& exitCode) {
         "simulate", "Run one simulation (spring-mass dynamics or prescribed slip) and write its samples as CSV");
     auto o = std::make_shared<SimulateOptions>();
     addSimOptions(cmd, o->sim);
-    cmd->add_option("--tolerance", o->sim.tolerance,
-                    "Integrate adaptively to this relative displacement error (1e-5 to 0.5; dynamics set-up): "
-                    "error-controlled steps, stick-slip switches located, output exactly every --output-every. "
-                    "Default: the fixed step --dt")
-        ->type_name("TOL");
+    addToleranceOption(cmd, o->sim, "output exactly every --output-every");
     cmd->add_option("--input", o->input,
                     "Prescribed slip history CSV: time_s and one of rel_disp_m, stage_disp_m (slider held fixed) "
                     "or rel_vel_mps; optional normal_force_N; '#' lines skipped")

@@ -98,8 +98,7 @@ bool writeSweepFiles(const SweepCliOptions& o, const std::string& unit, const Si
                        "]\n# mode = " + toString(so.mode) + ", direction = " + toString(so.direction) +
                        (so.concurrentBranches ? " (branches concurrent: down starts from rest at the top value)" : "") +
                        "\n# settle = " + std::to_string(so.settleCycles) + " cycles, samples = " +
-                       std::to_string(so.sampleCycles) + ", steps per period = " +
-                       std::to_string(stepsPerPeriodFor(p, so.stepsPerPeriod)) + ", period tolerance = " +
+                       std::to_string(so.sampleCycles) + ", " + steppingText(p, so.stepsPerPeriod) + ", period tolerance = " +
                        num(so.classify.relTol) + "\n# status = " + toString(r.status) +
                        (r.message.empty() ? "" : " (" + r.message + ")") + "\n";
     for (const std::string& k : paramKeys()) {
@@ -231,6 +230,7 @@ void addSweepCommand(CLI::App& root, int& exitCode) {
                   "only the down branch's starting state differs");
     cmd->add_option("--steps-per-period", opts->stepsPerPeriod, "Time steps per forcing period (0 = from --dt)")
         ->capture_default_str();
+    addToleranceOption(cmd, opts->sim, "Poincare samples at the exact section phase from the dense output (with --no-lyapunov: the Lyapunov companion needs the fixed-step map); not --tol, the period test");
     cmd->add_option("--phase", opts->phase, "Section phase in the forcing cycle [rad]")->capture_default_str();
     cmd->add_option("--tol", opts->tol, "Relative tolerance of the period test")->capture_default_str();
     cmd->add_flag("--no-lyapunov", opts->noLyapunov, "Skip the largest Lyapunov exponent (halves the cost)");

@@ -6,6 +6,7 @@
 
 #include "parallel.hpp"
 #include "poincare.hpp"
+#include "section_stepping.hpp"
 #include "sweep.hpp"
 
 namespace stickslip {
@@ -59,7 +60,7 @@ MapCell computeCell(const SimParams& base, const MapOptions& opt, const std::vec
     // Steps per period stay N for every cell (dt = T/N follows f).
     const DynamicsModel m = poincareModel(p, n);
     DynState s = m.initialState(0.0);
-    const PoincareSection sec = poincareSectionFrom(m, s, n, opt.settleCycles, opt.sampleCycles, quiet);
+    const PoincareSection sec = SectionStepping::of(p, n).section(m, s, opt.settleCycles, opt.sampleCycles, quiet);
     cell.status = sec.status;
     if (sec.status == RunStatus::Ok) {
         const Classification c = classifyMotion(sec, classifyScales(p), opt.classify);

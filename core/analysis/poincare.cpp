@@ -1,5 +1,7 @@
 #include "poincare.hpp"
 
+#include "section_stepping.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -161,12 +163,11 @@ PoincareSection poincareSection(const SimParams& p, const PoincareOptions& opt, 
         out.message = formatIssues(issues);
         return out;
     }
-    const long n = stepsPerPeriodFor(p, opt.stepsPerPeriod);
-    const DynamicsModel m = poincareModel(p, n);
+    const SectionStepping st = SectionStepping::of(p, opt.stepsPerPeriod);
+    const DynamicsModel m = poincareModel(p, st.stepsPerPeriod);
     DynState s = m.initialState(0.0);
-    const long offset = detail::phaseOffsetSteps(opt.phase_rad, n);
-    if (offset > 0) {
-        StepReport rep = advanceQuiet(m, s, offset, ctl);
+    if (opt.phase_rad > 0) {
+        StepReport rep = st.toPhase(m, s, opt.phase_rad, ctl);
         if (rep.status != RunStatus::Ok) {
             PoincareSection out;
             out.period_s = p.drive.period();
@@ -175,7 +176,7 @@ PoincareSection poincareSection(const SimParams& p, const PoincareOptions& opt, 
             return out;
         }
     }
-    return poincareSectionFrom(m, s, n, opt.settleCycles, opt.cycles, ctl);
+    return st.section(m, s, opt.settleCycles, opt.cycles, ctl);
 }
 
 }  // namespace stickslip

@@ -11,6 +11,7 @@
 
 #include "lyapunov.hpp"
 #include "parallel.hpp"
+#include "section_stepping.hpp"
 
 namespace stickslip {
 
@@ -61,6 +62,10 @@ ParamIssues SweepOptions::validate(const SimParams& base) const {
     if (threads < 0) out.push_back({"threads", double(threads), ">= 0 (0 = all cores)"});
     if (lyapunov && !(lyapunovD0 > 0 && lyapunovD0 < 1e-2)) out.push_back({"lyapunovD0", lyapunovD0, "in (0, 1e-2)"});
     for (auto& i : classify.validate()) out.push_back(i);
+    if (lyapunov && base.integration.tolerance > 0.0)
+        out.push_back({"tolerance", base.integration.tolerance,
+                       "0 with the Lyapunov exponent (its companion trajectory steps the fixed-step map; "
+                       "--no-lyapunov with --tolerance)"});
     if (out.empty() && base.setup != SetupKind::Dynamics)
         out.push_back({"setup", 0.0, "dynamics (a sweep needs the harmonic oscillator set-up)"});
     // Every value must give valid parameters.
@@ -78,12 +83,13 @@ ParamIssues SweepOptions::validate(const SimParams& base) const {
 namespace {
 
 // One value: settle, then sample (with the Lyapunov companion when asked) from state s.
-void runValue(const SimParams& p, const SweepOptions& opt, long n, DynState& s, const DynamicsModel& m,
-              SweepPoint& pt, const RunControl& quiet, bool companionThread = false) {
+void runValue(const SimParams& p, const SweepOptions& opt, const SectionStepping& st, DynState& s,
+              const DynamicsModel& m, SweepPoint& pt, const RunControl& quiet, bool companionThread = false) {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     pt.lyapunovPerCycle = pt.lyapunovPerSecond = nan;
+    const long n = st.stepsPerPeriod;  // the Lyapunov companion steps the fixed-step map (validate())
     if (!opt.lyapunov) {
-        pt.section = poincareSectionFrom(m, s, n, opt.settleCycles, opt.sampleCycles, quiet);
+        pt.section = st.section(m, s, opt.settleCycles, opt.sampleCycles, quiet);
     } else {
         StepReport rep = detail::settleCycles(m, s, n, opt.settleCycles, quiet);
         if (rep.status != RunStatus::Ok) {
@@ -124,7 +130,6 @@ void runBranch(const SimParams& base, const SweepOptions& opt, long n, const std
                int direction, DynState* carry, bool continueCarry, long leadInCycles, bool companionThread,
                const RunControl& quiet, const std::function<void()>& valueDone, Branch& out) {
     out.points.reserve(values.size());
-    const long offset = detail::phaseOffsetSteps(opt.phase_rad, n);
     DynState local;
     DynState& s = carry ? *carry : local;
     const bool fromRest = !(carry && continueCarry);
@@ -132,11 +137,11 @@ void runBranch(const SimParams& base, const SweepOptions& opt, long n, const std
         SimParams p = base;
         setParam(p, opt.key, values[i]);
         const DynamicsModel m = poincareModel(p, n);
+        const SectionStepping st = SectionStepping::of(p, n);
         if (i == 0 && fromRest) {
             s = m.initialState(0.0);
-            StepReport rep = advanceQuiet(m, s, offset, quiet);
-            if (rep.status == RunStatus::Ok && leadInCycles > 0)
-                rep = detail::settleCycles(m, s, n, leadInCycles, quiet);
+            StepReport rep = st.toPhase(m, s, opt.phase_rad, quiet);
+            if (rep.status == RunStatus::Ok && leadInCycles > 0) rep = st.settle(m, s, leadInCycles, quiet);
             if (rep.status != RunStatus::Ok) {
                 out.status = rep.status;
                 out.message = rep.message;
@@ -148,13 +153,13 @@ void runBranch(const SimParams& base, const SweepOptions& opt, long n, const std
             // Carry (x, v, a, F, α) over; restart the clock at the section phase of the new drive,
             // so the stage period and phase follow the new value (f may be the key). After a
             // lead-in this puts the clock where a continued branch has it.
-            s.t = static_cast<double>(offset) * m.dt_s;
+            s.t = st.phaseTime(opt.phase_rad);
             s.u = m.stage.displacement(s.t);
         }
         SweepPoint pt;
         pt.value = values[i];
         pt.direction = direction;
-        runValue(p, opt, n, s, m, pt, quiet, companionThread);
+        runValue(p, opt, st, s, m, pt, quiet, companionThread);
         if (pt.section.status != RunStatus::Ok) {
             out.status = pt.section.status;
             out.message = pt.section.message;
@@ -273,16 +278,17 @@ std::vector<SweepValueRecord> independentSweepValues(const SimParams& base, cons
             SimParams p = base;
             setParam(p, opt.key, v);
             const DynamicsModel m = poincareModel(p, n);
+            const SectionStepping st = SectionStepping::of(p, n);
             DynState s = m.initialState(0.0);
             SweepPoint& pt = out[k].point;
             pt.value = v;
             pt.direction = +1;
-            StepReport rep = advanceQuiet(m, s, detail::phaseOffsetSteps(opt.phase_rad, n), quiet);
+            StepReport rep = st.toPhase(m, s, opt.phase_rad, quiet);
             if (rep.status != RunStatus::Ok) {
                 pt.section.status = rep.status;
                 pt.section.message = rep.message;
             } else {
-                runValue(p, opt, n, s, m, pt, quiet);
+                runValue(p, opt, st, s, m, pt, quiet);
             }
             out[k].done = true;
         },

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "core/analysis/sweep.hpp"
 #include "core/integrate/adaptive.hpp"
 #include "core/integrate/simulate.hpp"
 #include "core/io/csv_table.hpp"
@@ -14,6 +15,7 @@
 #include "core/presets.hpp"
 
 #include "cli_runner.hpp"
+#include "tests/file_bytes.hpp"
 
 using namespace stickslip;
 
@@ -134,6 +136,56 @@ private slots:
         QCOMPARE(runCli({"simulate", "--tolerance", "1e-7", "--out", dir.filePath("x.csv")}).exitCode, 2);
         QCOMPARE(runCli({"simulate", "--tolerance", "abc", "--out", dir.filePath("x.csv")}).exitCode, 2);
         QCOMPARE(runCli({"simulate", "--setup", "prescribed", "--tolerance", "1e-3", "--out", dir.filePath("x.csv")}).exitCode, 2);
+    }
+
+    // sweep and map take --tolerance too: the summary equals the in-process adaptive sweep and its
+    // header says how it was stepped; the Lyapunov exponent (fixed-step map) with a tolerance is
+    // refused with exit 2, naming the tolerance.
+    void sweepAndMapTakeATolerance() {
+        QTemporaryDir dir;
+        const QString out = dir.filePath("s.csv"), sum = dir.filePath("sum.csv");
+        const Result r = runCli({"sweep", "--preset", "fig20", "--from", "0.5mm", "--to", "3mm", "--steps", "3",
+                                 "--settle", "20", "--samples", "20", "--no-lyapunov", "--tolerance", "1e-4", "--out", out,
+                                 "--summary", sum});
+        QVERIFY2(r.exitCode == 0, r.err.constData());
+        // The summary has text columns (direction, class): read it line by line.
+        QList<QByteArray> rows;
+        bool saw = false;
+        for (const QByteArray& line : readAll(sum).split('\n')) {
+            if (line.startsWith('#')) saw |= line.contains("integration = adaptive, tolerance = 0.0001");
+            else if (!line.isEmpty() && !line.startsWith("param_value")) rows.push_back(line);
+        }
+        QVERIFY(saw);
+        Preset pr;
+        QVERIFY(findPreset("fig20", pr));
+        SimParams p = pr.params;
+        p.integration.tolerance = 1e-4;
+        SweepOptions so;
+        so.from = 0.5e-3;
+        so.to = 3e-3;
+        so.steps = 3;
+        so.settleCycles = 20;
+        so.sampleCycles = 20;
+        so.lyapunov = false;
+        const SweepResult ref = bifurcationSweep(p, so);
+        QVERIFY2(ref.status == RunStatus::Ok, ref.message.c_str());
+        QCOMPARE(size_t(rows.size()), ref.points.size());
+        for (size_t i = 0; i < ref.points.size(); ++i) {
+            const QList<QByteArray> f = rows[static_cast<int>(i)].split(',');
+            QCOMPARE(f.size(), 7);
+            QCOMPARE(QString(f[2]), QString(toString(ref.points[i].classification.motion)));
+            QVERIFY(std::abs(f[4].toDouble() - ref.points[i].classification.stickFraction) <= 1e-9);
+        }
+        const Result lyap = runCli({"sweep", "--preset", "fig20", "--from", "1mm", "--to", "2mm", "--steps", "2",
+                                    "--tolerance", "1e-4", "--out", out});
+        QCOMPARE(lyap.exitCode, 2);
+        QVERIFY2(lyap.err.contains("tolerance"), lyap.err.constData());
+        const QString map = dir.filePath("map.csv");
+        const Result m = runCli({"map", "--preset", "fig20", "--param", "A", "--from", "0.5mm", "--to", "3mm", "--steps",
+                                 "2", "--param2", "f", "--from2", "2.5", "--to2", "3.5", "--steps2", "2", "--settle", "20",
+                                 "--samples", "20", "--tolerance", "1e-4", "--out", map});
+        QVERIFY2(m.exitCode == 0, m.err.constData());
+        QVERIFY(readAll(map).contains("integration = adaptive, tolerance = 0.0001"));
     }
 
     void outDashWritesStdout() {
