@@ -83,6 +83,7 @@ SimOptions Kwargs::simOptions(const std::string& preset, const std::string& func
     takeText("cycles", o.cycles);
     takeText("transient", o.transient);
     takeText("output_every", o.outputEvery);
+    takeText("tolerance", o.tolerance);
     const std::vector<std::string> keys = paramKeys();
     for (auto item : py::dict(d_)) {  // a copy: taking from d_ while iterating it
         const std::string key = item.first.cast<std::string>();

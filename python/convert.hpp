@@ -41,7 +41,7 @@ public:
     // Raises ValueError for every name left ("fn() got unexpected keyword 'x'"); `known` lists the accepted ones.
     void rejectRest(const std::string& function, const std::vector<std::string>& known) const;
     // The rest as run options on top of `preset` (parameter keys, model, setup, dt, cycles,
-    // transient, output_every); ValueError for anything else.
+    // transient, output_every, tolerance); ValueError for anything else.
     SimOptions simOptions(const std::string& preset, const std::string& function,
                           const std::vector<std::string>& functionOptions);
 

@@ -19,6 +19,18 @@ def test_sweep_equals_cli(cli, tmp_path):
     assert r["steps_per_period"] > 0
 
 
+def test_sweep_with_tolerance_equals_cli(cli, tmp_path):
+    r = stickslip.sweep("fig20", param="A", start="0.5mm", stop="1mm", steps=2, settle=5, samples=4,
+                        lyapunov=False, tolerance=1e-4)
+    run_cli(cli, "sweep", "--preset", "fig20", "--param", "A", "--from", "0.5mm", "--to", "1mm", "--steps", "2",
+            "--settle", "5", "--samples", "4", "--no-lyapunov", "--tolerance", "1e-4", "--out", tmp_path / "s.csv",
+            "--summary", tmp_path / "sum.csv")
+    header, rows = read_csv_text((tmp_path / "s.csv").read_text())
+    assert_columns_equal(header, rows, r["samples"], int_columns=("sample",))
+    with pytest.raises(ValueError, match="tolerance"):
+        stickslip.sweep("fig20", start="0.5mm", stop="1mm", steps=2, tolerance=1e-4)  # Lyapunov needs the fixed step
+
+
 def test_map_equals_cli(cli, tmp_path):
     r = stickslip.map("fig20", param="A", start=0.3e-3, stop=0.6e-3, steps=2, param2="f", start2=3, stop2=4,
                       steps2=2, settle=3, samples=4, threads=2)
