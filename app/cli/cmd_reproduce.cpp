@@ -60,6 +60,7 @@ struct ReproduceOptions {
     long settle = 40;                // settle cycles per swept value / before a section
     long samples = 40;               // Poincaré samples per swept value
     long stepsPerPeriod = 4000;      // N: dt = T/N (the presets use 10 000)
+    double tolerance = 0.0;          // > 0: error-controlled steps (adaptive.hpp) instead of dt = T/N
     long cycles = 40;                // recorded cycles for phase portraits and spectra
     long sectionPoints = 2000;       // Poincaré points for Figs 22/23 (paper: 40 000)
     bool coulomb = true;             // also the Coulomb model for Figs 19/20
@@ -233,8 +234,10 @@ std::vector<double> sliderSeries(const RunResult& run) {
 
 std::string header(int figure, const SimParams& p, const ReproduceOptions& o) {
     std::ostringstream h;
-    h << "# stickslip-cli reproduce --figure " << figure << "\n# steps_per_period = " << o.stepsPerPeriod
-      << ", settle_cycles = " << o.settle << "\n# params:";
+    h << "# stickslip-cli reproduce --figure " << figure << "\n# ";
+    if (o.tolerance > 0) h << "integration = adaptive, tolerance = " << num(o.tolerance);
+    else h << "steps_per_period = " << o.stepsPerPeriod;
+    h << ", settle_cycles = " << o.settle << "\n# params:";
     for (const auto& key : paramKeys()) {
         double v = 0;
         if (getParam(p, key, v)) h << ' ' << key << '=' << num(v);
@@ -250,6 +253,7 @@ void runFigure(const ReproduceOptions& o, int& exitCode) {
         return;
     }
     SimParams base = preset.params;
+    base.integration.tolerance = o.tolerance;
     for (const auto& s : o.sets) {
         std::string key, why;
         double v = 0;
@@ -416,6 +420,11 @@ void addReproduceCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--steps-per-period", o->stepsPerPeriod, "Time steps per forcing period (dt = T/N)")
         ->capture_default_str()
         ->check(CLI::Range(50L, 1000000L));
+    cmd->add_option("--tolerance", o->tolerance,
+                    "Integrate adaptively to this relative displacement error (1e-5 to 0.5) instead of dt = T/N: "
+                    "error-controlled steps, stick-slip switches located, Poincare samples at the exact phase from "
+                    "the dense output")
+        ->type_name("TOL");
     cmd->add_option("--cycles", o->cycles, "Recorded cycles for the phase portrait and spectrum (Figs 22, 23)")
         ->capture_default_str()
         ->check(CLI::Range(1L, 1000000L));

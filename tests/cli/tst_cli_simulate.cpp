@@ -188,6 +188,19 @@ private slots:
         QVERIFY(readAll(map).contains("integration = adaptive, tolerance = 0.0001"));
     }
 
+    // reproduce --tolerance: the figure's section and run are integrated adaptively (the section
+    // at the exact phase: sample k at (settle + k) T), and the files say so.
+    void reproduceTakesATolerance() {
+        QTemporaryDir dir;
+        const Result r = runCli({"reproduce", "--figure", "22", "--tolerance", "1e-4", "--settle", "3", "--cycles", "2",
+                                 "--section-points", "4", "--out", dir.path()});
+        if (r.err.contains("no plot widgets")) QSKIP("stickslip-cli built without plot widgets: no reproduce");
+        QVERIFY2(r.exitCode == 0, r.err.constData());
+        const QByteArray sec = readAll(dir.filePath("fig22_poincare.csv"));
+        QVERIFY2(sec.contains("integration = adaptive, tolerance = 0.0001"), sec.left(300).constData());
+        QCOMPARE(runCli({"reproduce", "--figure", "22", "--tolerance", "1e-7", "--out", dir.path()}).exitCode, 2);
+    }
+
     void outDashWritesStdout() {
         const Result r = runCli({"simulate", "--preset", "fig16", "--cycles", "1", "--out", "-"});
         QVERIFY2(r.exitCode == 0, r.err.constData());

@@ -5,34 +5,18 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
-#include "core/integrate/simulate.hpp"
 #include "core/io/csv_table.hpp"
-#include "core/presets.hpp"
 #include "widgets/plot_export.hpp"
 #include "widgets/poincare_plot.hpp"
 #include "widgets/spectrum_plot.hpp"
 #include "widgets/time_series_plot.hpp"
 
 #include "tests/file_bytes.hpp"
+#include "tests/gui/short_run.hpp"
 
 using namespace stickslip;
 using namespace stickslip::widgets;
-
-namespace {
-
-// A short real run of the Fig. 20 set at A = 1 mm (3 cycles, T/2000 steps).
-RunResult shortRun(LawKind law) {
-    Preset p;
-    findPreset("fig20", p);
-    SimParams s = p.params;
-    s.law = law;
-    s.integration.dt_s = s.drive.period() / 2000.0;
-    s.integration.outputInterval_s = s.drive.period() / 200.0;
-    s.cycles = 3;
-    return simulate(s);
-}
-
-}  // namespace
+using stickslip::testing::shortRun;
 
 class TestPlotExport : public QObject {
     Q_OBJECT

@@ -35,25 +35,14 @@
 #include "widgets/time_series_plot.hpp"
 
 #include "tests/file_bytes.hpp"
+#include "tests/gui/short_run.hpp"
 
 using namespace stickslip;
 using namespace stickslip::widgets;
+using stickslip::testing::shortParams;
+using stickslip::testing::shortRun;
 
 namespace {
-
-// A short real run of the Fig. 20 set at A = 1 mm (3 cycles, T/2000 steps).
-SimParams shortParams(LawKind law) {
-    Preset p;
-    findPreset("fig20", p);
-    SimParams s = p.params;
-    s.law = law;
-    s.integration.dt_s = s.drive.period() / 2000.0;
-    s.integration.outputInterval_s = s.drive.period() / 200.0;
-    s.cycles = 3;
-    return s;
-}
-
-RunResult shortRun(LawKind law) { return simulate(shortParams(law)); }
 
 // A synthetic run whose (V, F/t_N) trace is an ellipse, traversed clockwise when cw.
 RunResult ellipseRun(bool cw, int cycles, double period, int perCycle) {
