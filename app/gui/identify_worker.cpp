@@ -3,10 +3,12 @@
 #include <QElapsedTimer>
 #include <QMetaObject>
 #include <QtConcurrent/QtConcurrentRun>
+#include <algorithm>
 #include <cmath>
 
 #include "core/io/units.hpp"
 #include "core/identify/fit_report.hpp"
+#include "core/identify/pipeline.hpp"
 
 namespace stickslip::gui {
 
@@ -108,25 +110,22 @@ FitOutcome runFitJob(const FitRequest& request, const std::atomic<bool>* cancel,
         out.message = QStringLiteral("no model chosen");
         return out;
     }
+    // The shared loop (identify::fitLaws, as `stickslip-cli fit`); per law, the overlays and the
+    // residual diagnostics the Fit tab draws.
     const double nLaws = static_cast<double>(request.laws.size());
-    for (size_t i = 0; i < request.laws.size(); ++i) {
-        if (cancel && cancel->load()) break;
-        DatasetFitSettings st = request.settings;
-        st.law = request.laws[i];
-        st.setup = request.runs.setup;
-        st.cancel = cancel;
-        const std::string stage = std::string("fitting ") + toString(st.law);
-        st.progress = [&, i, stage](double f) { report((static_cast<double>(i) + 0.95 * f) / nLaws, stage); };
+    DatasetFitSettings st = request.settings;
+    st.setup = request.runs.setup;
+    st.cancel = cancel;
+    st.progress = [&](double g) {
+        const size_t i = std::min(static_cast<size_t>(g * nLaws), request.laws.size() - 1);
+        const double f = g * nLaws - static_cast<double>(i);
+        report((static_cast<double>(i) + 0.95 * f) / nLaws, std::string("fitting ") + toString(request.laws[i]));
+    };
+    auto fitted = [&](size_t i, const identify::DatasetFit& fit) {
         LawFit lf;
-        lf.law = st.law;
-        lf.fit = fitDataset(fitRuns, valRuns, st);
-        if (cancel && cancel->load()) break;
-        if (!lf.fit.ok) {
-            out.message = QStringLiteral("%1: %2").arg(QString::fromLatin1(toString(st.law)), QString::fromStdString(lf.fit.message));
-            out.elapsed_ms = msSince(clock);
-            return out;
-        }
-        report((i + 0.95) / nLaws, "predicting " + std::string(toString(st.law)));
+        lf.law = request.laws[i];
+        lf.fit = fit;
+        report((static_cast<double>(i) + 0.95) / nLaws, "predicting " + std::string(toString(lf.law)));
         for (const CleanRun& c : fitRuns) lf.overlays.push_back(overlayOf(c, "fit", st.setup, lf.fit.model, st.predict));
         for (const CleanRun& c : valRuns) lf.overlays.push_back(overlayOf(c, "validation", st.setup, lf.fit.model, st.predict));
         std::vector<DiagnosticRun> diag;
@@ -147,6 +146,14 @@ FitOutcome runFitJob(const FitRequest& request, const std::atomic<bool>* cancel,
         }
         if (!diag.empty()) lf.diagnostics = diagnose(diag);
         out.fits.push_back(std::move(lf));
+    };
+    std::vector<identify::DatasetFit> fits;
+    identify::PipelineStatus status;
+    if (!identify::fitLaws(fitRuns, valRuns, st, request.laws, fits, status, {}, fitted) &&
+        !(cancel && cancel->load())) {
+        out.message = QString::fromStdString(status.message);
+        out.elapsed_ms = msSince(clock);
+        return out;
     }
     out.elapsed_ms = msSince(clock);
     if (cancel && cancel->load()) {

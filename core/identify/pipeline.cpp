@@ -177,27 +177,7 @@ bool runFitRequest(const FitRequest& o, FitOutcome& out, PipelineStatus& status)
         return fail(status, PipelineCode::BadArguments, "--model " + o.model + ": must be " + names + "or both");
     }
 
-    for (LawKind law : laws) {
-        st.law = law;
-        if (o.log)
-            o.log(std::string("fitting ") + toString(law) + " (" + toString(out.setup) + ", " +
-                  std::to_string(out.fitRuns.size()) + " fit runs, " + std::to_string(out.validationRuns.size()) +
-                  " validation runs)...");
-        DatasetFit f = fitDataset(out.fitRuns, out.validationRuns, st);
-        if (!f.ok) {
-            const bool cancelled = o.cancel && o.cancel->load();
-            return fail(status, cancelled ? PipelineCode::Cancelled : PipelineCode::RunFailed,
-                        std::string(toString(law)) + ": " + f.message);
-        }
-        if (o.log) {
-            std::ostringstream line;  // default stream formatting, as the CLI always printed it
-            line << "  " << toString(law) << ": fit NRMSE " << f.fitNrmse << ", validation NRMSE " << f.validationNrmse
-                 << ", " << f.fit.identifiabilityMessage;
-            o.log(line.str());
-            if (!f.stderrWarning.empty()) o.log("  warning: " + f.stderrWarning);
-        }
-        out.fits.push_back(std::move(f));
-    }
+    if (!fitLaws(out.fitRuns, out.validationRuns, st, laws, out.fits, status, o.log)) return false;
     std::vector<const DatasetFit*> fitted;
     for (const DatasetFit& f : out.fits) fitted.push_back(&f);
     nlohmann::json& rep = out.report;
@@ -209,6 +189,40 @@ bool runFitRequest(const FitRequest& o, FitOutcome& out, PipelineStatus& status)
           "mu, C1 and eta are per unit of that load, so for a band brake mu absorbs the band's force amplification"
         : "t_N of each run from the normal force column (mean), else the manifest";
     rep["validation"] = !o.in.validateOn.empty() ? "by run (--validate-on)" : (o.splitTime > 0 ? "by time (--split-time)" : "none");
+    return true;
+}
+
+bool fitLaws(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& validationRuns, DatasetFitSettings st,
+             const std::vector<LawKind>& laws, std::vector<DatasetFit>& out, PipelineStatus& status,
+             const std::function<void(const std::string&)>& log,
+             const std::function<void(size_t, const DatasetFit&)>& fitted) {
+    const std::function<void(double)> progress = st.progress;
+    const double nLaws = static_cast<double>(std::max<size_t>(laws.size(), 1));
+    for (size_t i = 0; i < laws.size(); ++i) {
+        if (st.cancel && st.cancel->load()) return fail(status, PipelineCode::Cancelled, "cancelled");
+        st.law = laws[i];
+        if (progress)
+            st.progress = [&progress, i, nLaws](double f) { progress((static_cast<double>(i) + f) / nLaws); };
+        if (log)
+            log(std::string("fitting ") + toString(st.law) + " (" + toString(st.setup) + ", " +
+                std::to_string(fitRuns.size()) + " fit runs, " + std::to_string(validationRuns.size()) +
+                " validation runs)...");
+        DatasetFit f = fitDataset(fitRuns, validationRuns, st);
+        if (!f.ok) {
+            const bool cancelled = st.cancel && st.cancel->load();
+            return fail(status, cancelled ? PipelineCode::Cancelled : PipelineCode::RunFailed,
+                        std::string(toString(st.law)) + ": " + f.message);
+        }
+        if (log) {
+            std::ostringstream line;  // default stream formatting, as the CLI always printed it
+            line << "  " << toString(st.law) << ": fit NRMSE " << f.fitNrmse << ", validation NRMSE "
+                 << f.validationNrmse << ", " << f.fit.identifiabilityMessage;
+            log(line.str());
+            if (!f.stderrWarning.empty()) log("  warning: " + f.stderrWarning);
+        }
+        out.push_back(std::move(f));
+        if (fitted) fitted(i, out.back());
+    }
     return true;
 }
 

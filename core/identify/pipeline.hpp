@@ -79,6 +79,16 @@ struct FitOutcome {
 
 bool runFitRequest(const FitRequest& req, FitOutcome& out, PipelineStatus& status);
 
+// The fit of each law in turn to cleaned runs (fitDataset), the loop `fit` and the app's Fit tab
+// share. `st` as fitDataset takes it (its law is set per fit; its progress, when set, is mapped
+// onto the whole loop); `fitted(i, fit)` is called after each successful fit, `log` gets one line
+// before and after each. Stops at the first failure: status RunFailed, or Cancelled when
+// st.cancel is set.
+bool fitLaws(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& validationRuns, DatasetFitSettings st,
+             const std::vector<LawKind>& laws, std::vector<DatasetFit>& out, PipelineStatus& status,
+             const std::function<void(const std::string&)>& log = {},
+             const std::function<void(size_t, const DatasetFit&)>& fitted = {});
+
 struct IdentifyRequest {
     MeasuredInputs in;
     CleaningOptions cleaning;

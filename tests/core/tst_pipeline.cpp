@@ -1,6 +1,8 @@
 // identify/pipeline.hpp: loading measured inputs and the fit/identify requests of every front end.
 #include <QtTest>
 
+#include <atomic>
+
 #include "core/identify/pipeline.hpp"
 
 using namespace stickslip;
@@ -70,6 +72,44 @@ private slots:
         QVERIFY(!runFitRequest(req, out, st));
         QVERIFY(st.code == PipelineCode::BadArguments);
         QVERIFY(st.message.find("--model stribeck") != std::string::npos);
+    }
+
+    // The law loop `fit` and the app's Fit tab share: each law fitted in turn, `fitted` called
+    // after each with its index, progress over the whole loop, a cancelled loop reported so.
+    void fitLawsFitsEachLawInTurn() {
+        FitRequest req;
+        req.in.data = {kDamper + "1Hz_30lb_1in.csv"};
+        req.model = "coulomb";
+        req.free = "mu,epsT";
+        req.multistarts = 1;
+        req.maxIterations = 10;
+        FitOutcome one;
+        PipelineStatus st;
+        QVERIFY2(runFitRequest(req, one, st), st.message.c_str());
+        DatasetFitSettings s = one.settings;
+        std::vector<double> progress;
+        s.progress = [&](double f) { progress.push_back(f); };
+        std::vector<DatasetFit> fits;
+        std::vector<size_t> order;
+        std::vector<std::string> lines;
+        const std::vector<LawKind> laws = {LawKind::Coulomb, LawKind::Coulomb};
+        QVERIFY2(fitLaws(one.fitRuns, one.validationRuns, s, laws, fits, st, [&](const std::string& l) { lines.push_back(l); },
+                         [&](size_t i, const DatasetFit& f) {
+                             order.push_back(i);
+                             QVERIFY(f.ok);
+                         }),
+                 st.message.c_str());
+        QCOMPARE(fits.size(), size_t(2));
+        QCOMPARE(order, (std::vector<size_t>{0, 1}));
+        QCOMPARE(fits[0].fitNrmse, one.fits[0].fitNrmse);  // the same fit as the command's
+        QVERIFY(lines.size() >= 4);
+        QVERIFY(!progress.empty() && progress.back() > 0.5 && progress.back() <= 1.0);
+        std::atomic<bool> cancel{true};
+        s.cancel = &cancel;
+        fits.clear();
+        QVERIFY(!fitLaws(one.fitRuns, one.validationRuns, s, laws, fits, st));
+        QVERIFY(st.code == PipelineCode::Cancelled);
+        QVERIFY(fits.empty());
     }
 
     void identifyRequestRejectsBadOptions() {
