@@ -47,6 +47,14 @@ void addInputOptions(Setters<Req>& s) {
     s.insert(fn<Req>("no_bandstop", [](Req& r, py::handle v) { r.cleaning.noBandStop = v.cast<bool>(); }));
     s.insert(fn<Req>("no_lowpass", [](Req& r, py::handle v) { r.cleaning.noLowPass = v.cast<bool>(); }));
     s.insert(fn<Req>("no_steady_trim", [](Req& r, py::handle v) { r.cleaning.noSteadyTrim = v.cast<bool>(); }));
+    s.insert(fn<Req>("bandstop_hz", [](Req& r, py::handle v) { r.cleaning.pre.filters.bandStopCenter_Hz = v.cast<double>(); }));
+    s.insert(fn<Req>("bandstop_width", [](Req& r, py::handle v) { r.cleaning.pre.filters.bandStopWidth_Hz = v.cast<double>(); }));
+    s.insert(fn<Req>("bandstop_order", [](Req& r, py::handle v) { r.cleaning.pre.filters.bandStopOrder = v.cast<int>(); }));
+    s.insert(fn<Req>("lowpass_hz", [](Req& r, py::handle v) { r.cleaning.pre.filters.lowPass_Hz = v.cast<double>(); }));
+    s.insert(fn<Req>("lowpass_order", [](Req& r, py::handle v) { r.cleaning.pre.filters.lowPassOrder = v.cast<int>(); }));
+    s.insert(fn<Req>("trim_start", [](Req& r, py::handle v) { r.cleaning.pre.trim.start_s = v.cast<double>(); }));
+    s.insert(fn<Req>("trim_end", [](Req& r, py::handle v) { r.cleaning.pre.trim.end_s = v.cast<double>(); }));
+    s.insert(fn<Req>("stage_harmonics", [](Req& r, py::handle v) { r.cleaning.pre.stageFourierOrder = v.cast<int>(); }));
     s.insert(fn<Req>("free", [](Req& r, py::handle v) {
         if (py::isinstance<py::str>(v)) r.free = v.cast<std::string>();
         else { r.free.clear(); for (const auto& n : stringList(v, "free")) r.free += (r.free.empty() ? "" : ",") + n; }
@@ -67,14 +75,6 @@ Setters<FitRequest> fitSetters() {
                 for (auto kv : v.cast<py::dict>()) r.sets.push_back(text(kv.first) + "=" + valueText(kv.second, text(kv.first)));
             else r.sets = stringList(v, "set");
         }),
-        fn<R>("bandstop_hz", [](R& r, py::handle v) { r.cleaning.pre.filters.bandStopCenter_Hz = v.cast<double>(); }),
-        fn<R>("bandstop_width", [](R& r, py::handle v) { r.cleaning.pre.filters.bandStopWidth_Hz = v.cast<double>(); }),
-        fn<R>("bandstop_order", [](R& r, py::handle v) { r.cleaning.pre.filters.bandStopOrder = v.cast<int>(); }),
-        fn<R>("lowpass_hz", [](R& r, py::handle v) { r.cleaning.pre.filters.lowPass_Hz = v.cast<double>(); }),
-        fn<R>("lowpass_order", [](R& r, py::handle v) { r.cleaning.pre.filters.lowPassOrder = v.cast<int>(); }),
-        fn<R>("trim_start", [](R& r, py::handle v) { r.cleaning.pre.trim.start_s = v.cast<double>(); }),
-        fn<R>("trim_end", [](R& r, py::handle v) { r.cleaning.pre.trim.end_s = v.cast<double>(); }),
-        fn<R>("stage_harmonics", [](R& r, py::handle v) { r.cleaning.pre.stageFourierOrder = v.cast<int>(); }),
         fn<R>("stride", [](R& r, py::handle v) { r.predict.stride = v.cast<int>(); }),
         fn<R>("substeps", [](R& r, py::handle v) { r.predict.substeps = v.cast<int>(); }),
         fn<R>("segment", [](R& r, py::handle v) { r.predict.segment_s = v.cast<double>(); }),

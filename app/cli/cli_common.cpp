@@ -43,6 +43,36 @@ void addToleranceOption(CLI::App* cmd, SimOptions& o, const std::string& samples
         ->type_name("TOL");
 }
 
+void addMeasuredInputOptions(CLI::App* cmd, identify::MeasuredInputs& in, const std::string& data,
+                             const std::string& validateOn) {
+    cmd->add_option("--data", in.data, data)->required()->expected(1, -1);
+    cmd->add_option("--setup", in.setup,
+                    "prescribed (slip in, force out) or dynamics (stage in, slider and force out); default from the columns");
+    cmd->add_option("--columns", in.columns,
+                    "SIGNAL=COLUMN mappings, e.g. friction=Fx (signals: time stage_disp slider_disp slip rel_vel stage_vel "
+                    "slider_vel friction normal tension slider_accel)");
+    cmd->add_option("--units", in.units, "SIGNAL=UNIT, e.g. stage_disp=mm");
+    cmd->add_option("--manifest", in.manifest, "dataset manifest JSON (per run k, A, f, tN; nominal mass)");
+    cmd->add_option("--run-set", in.runSets, "FILE:KEY=VALUE known setting of one run, e.g. run_01.csv:tN=6.2N");
+    cmd->add_option("--validate-on", in.validateOn, validateOn)->expected(1, -1);
+}
+
+void addCleaningOptions(CLI::App* cmd, identify::CleaningOptions& c) {
+    auto& f = c.pre.filters;
+    cmd->add_flag("--no-bandstop", c.noBandStop, "switch the mains band-stop off");
+    cmd->add_option("--bandstop-hz", f.bandStopCenter_Hz, "band-stop centre [Hz]")->capture_default_str();
+    cmd->add_option("--bandstop-width", f.bandStopWidth_Hz, "band-stop width [Hz]")->capture_default_str();
+    cmd->add_option("--bandstop-order", f.bandStopOrder, "band-stop prototype order")->capture_default_str();
+    cmd->add_flag("--no-lowpass", c.noLowPass, "switch the low-pass off");
+    cmd->add_option("--lowpass-hz", f.lowPass_Hz, "low-pass cut-off [Hz]")->capture_default_str();
+    cmd->add_option("--lowpass-order", f.lowPassOrder, "low-pass order")->capture_default_str();
+    cmd->add_option("--trim-start", c.pre.trim.start_s, "drop this many seconds at the start [s]");
+    cmd->add_option("--trim-end", c.pre.trim.end_s, "drop this many seconds at the end [s]");
+    cmd->add_option("--stage-harmonics", c.pre.stageFourierOrder,
+                    "dynamics: stage input = Fourier fit with this many harmonics (0 = measured)")->capture_default_str();
+    cmd->add_flag("--no-steady-trim", c.noSteadyTrim, "keep ramps (do not trim to the steady drive amplitude)");
+}
+
 std::string steppingText(const SimParams& p, long requestedStepsPerPeriod) {
     if (p.integration.tolerance > 0.0)
         return "integration = adaptive, tolerance = " + exactNumber(p.integration.tolerance) +

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "core/identify/pipeline.hpp"
 #include "core/params.hpp"
 #include "core/run_options.hpp"
 
@@ -28,6 +29,14 @@ void addToleranceOption(CLI::App* cmd, SimOptions& o, const std::string& samples
 // How a section's runs are stepped, for output headers: "steps per period = N" or
 // "integration = adaptive, tolerance = TOL (samples at the exact phase from the dense output)".
 std::string steppingText(const SimParams& p, long requestedStepsPerPeriod);
+
+// The measured-data options `fit` and `identify` share (identify::MeasuredInputs: --data,
+// --setup, --columns, --units, --manifest, --run-set, --validate-on) and the cleaning options
+// (identify::CleaningOptions: band-stop, low-pass, trims, stage harmonics, steady trim); `data`
+// and `validateOn` say what the command does with them.
+void addMeasuredInputOptions(CLI::App* cmd, identify::MeasuredInputs& in, const std::string& data,
+                             const std::string& validateOn);
+void addCleaningOptions(CLI::App* cmd, identify::CleaningOptions& c);
 
 // simParamsFromOptions (core/run_options.hpp) with the CLI exit codes: returns kOk, or kBadArguments with a message naming
 // the key, value and allowed range in *error (all violated fields, one per line).

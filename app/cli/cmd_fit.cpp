@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cancel.hpp"
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "core/identify/fit.hpp"
 #include "core/identify/fit_report.hpp"
@@ -93,33 +94,18 @@ void runFit(const FitOptions& o, int& exitCode) {
 void addFitCommand(CLI::App& root, int& exitCode) {
     auto o = std::make_shared<FitOptions>();
     auto* cmd = root.add_subcommand("fit", "Fit the friction law to measured runs (import, preprocessing, Ceres least squares)");
-    cmd->add_option("--data", o->req.in.data, "measured runs (CSV), fitted jointly")->required()->expected(1, -1);
-    cmd->add_option("--setup", o->req.in.setup, "prescribed (slip in, force out) or dynamics (stage in, slider and force out); default from the columns");
+    addMeasuredInputOptions(cmd, o->req.in, "measured runs (CSV), fitted jointly",
+                            "held-out runs (CSV) scored with the fitted model");
+    addCleaningOptions(cmd, o->req.cleaning);
     cmd->add_option("--model", o->req.model, "a law (rate-state, coulomb, dieterich-ruina, …) or both (rate-state and Coulomb)")->capture_default_str();
     cmd->add_option("--free", o->req.free,
                     "free parameters (a law's keys it lacks are dropped): " + fitParamKeys() +
                         " zeta; e.g. mu,a,b,Dc,epsT for --model dieterich-ruina")->capture_default_str();
-    cmd->add_option("--columns", o->req.in.columns, "SIGNAL=COLUMN mappings, e.g. friction=Fx (signals: time stage_disp slider_disp slip rel_vel stage_vel slider_vel friction normal tension slider_accel)");
-    cmd->add_option("--units", o->req.in.units, "SIGNAL=UNIT, e.g. stage_disp=mm");
-    cmd->add_option("--manifest", o->req.in.manifest, "dataset manifest JSON (per run k, A, f, tN; nominal mass)");
-    cmd->add_option("--run-set", o->req.in.runSets, "FILE:KEY=VALUE known setting of one run, e.g. run_01.csv:tN=6.2N");
     cmd->add_option("--set", o->req.sets, "KEY=VALUE starting (or, if not free, fixed) model value, e.g. C1=0.25");
-    cmd->add_option("--validate-on", o->req.in.validateOn, "held-out runs (CSV) scored with the fitted model")->expected(1, -1);
     cmd->add_option("--split-time", o->req.splitTime, "hold out the last (1-F) of every fit window for validation (0 = off)");
     cmd->add_option("--report", o->report, "fit report (JSON)")->required();
     cmd->add_option("--residuals", o->residuals, "residuals (CSV)");
-    cmd->add_flag("--no-bandstop", o->req.cleaning.noBandStop, "switch the mains band-stop off");
-    cmd->add_option("--bandstop-hz", o->req.cleaning.pre.filters.bandStopCenter_Hz, "band-stop centre [Hz]")->capture_default_str();
-    cmd->add_option("--bandstop-width", o->req.cleaning.pre.filters.bandStopWidth_Hz, "band-stop width [Hz]")->capture_default_str();
-    cmd->add_option("--bandstop-order", o->req.cleaning.pre.filters.bandStopOrder, "band-stop prototype order")->capture_default_str();
-    cmd->add_flag("--no-lowpass", o->req.cleaning.noLowPass, "switch the low-pass off");
-    cmd->add_option("--lowpass-hz", o->req.cleaning.pre.filters.lowPass_Hz, "low-pass cut-off [Hz]")->capture_default_str();
-    cmd->add_option("--lowpass-order", o->req.cleaning.pre.filters.lowPassOrder, "low-pass order")->capture_default_str();
-    cmd->add_option("--trim-start", o->req.cleaning.pre.trim.start_s, "drop this many seconds at the start [s]");
-    cmd->add_option("--trim-end", o->req.cleaning.pre.trim.end_s, "drop this many seconds at the end [s]");
-    cmd->add_option("--stage-harmonics", o->req.cleaning.pre.stageFourierOrder, "dynamics: stage input = Fourier fit with this many harmonics (0 = measured)")->capture_default_str();
     cmd->add_flag("--no-filter-prediction", o->req.noFilterPrediction, "compare the raw prediction with the cleaned measurement (default: pass the prediction through the same filter)");
-    cmd->add_flag("--no-steady-trim", o->req.cleaning.noSteadyTrim, "keep ramps (do not trim to the steady drive amplitude)");
     cmd->add_option("--stride", o->req.predict.stride, "prescribed: decimation of the measured samples")->capture_default_str();
     cmd->add_option("--substeps", o->req.predict.substeps, "prescribed: law steps per decimated sample")->capture_default_str();
     cmd->add_option("--segment", o->req.predict.segment_s, "dynamics: shooting segment length [s]")->capture_default_str();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cancel.hpp"
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "core/identify/fit.hpp"
 #include "core/identify/identify.hpp"
@@ -94,13 +95,9 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
 void addIdentifyCommand(CLI::App& root, int& exitCode) {
     auto o = std::make_shared<IdentifyCliOptions>();
     auto* cmd = root.add_subcommand("identify", "find effects the model lacks: residual -> effect -> refit, errors before/after");
-    cmd->add_option("--data", o->req.in.data, "measured runs (CSV), in recording order")->required()->expected(1, -1);
-    cmd->add_option("--setup", o->req.in.setup, "prescribed or dynamics; default from the columns");
-    cmd->add_option("--columns", o->req.in.columns, "SIGNAL=COLUMN mappings, e.g. friction=Fx");
-    cmd->add_option("--units", o->req.in.units, "SIGNAL=UNIT, e.g. stage_disp=mm");
-    cmd->add_option("--manifest", o->req.in.manifest, "dataset manifest JSON (per run k, A, f, tN; nominal mass)");
-    cmd->add_option("--run-set", o->req.in.runSets, "FILE:KEY=VALUE known setting of one run");
-    cmd->add_option("--validate-on", o->req.in.validateOn, "held-out runs (CSV); without it runs are held out in turn")->expected(1, -1);
+    addMeasuredInputOptions(cmd, o->req.in, "measured runs (CSV), in recording order",
+                            "held-out runs (CSV); without it runs are held out in turn");
+    addCleaningOptions(cmd, o->req.cleaning);
     cmd->add_option("--report", o->report, "report (JSON)")->required();
     cmd->add_option("--html", o->html, "self-contained HTML report");
     cmd->add_option("--free", o->req.free, "free baseline law parameters")->capture_default_str();
@@ -131,9 +128,6 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--seed", o->req.options.seed, "random seed (the loop is reproducible)")->capture_default_str();
     cmd->add_option("--epsT", o->req.options.start.epsT_N_per_m, "tangential penalty stiffness: start value, or the value held when not in --free [N/m]")->capture_default_str();
     cmd->add_option("--Dc", o->req.options.start.Dc_m, "critical slip distance: start value, or the value held when not in --free [m]")->capture_default_str();
-    cmd->add_flag("--no-bandstop", o->req.cleaning.noBandStop, "switch the mains band-stop off");
-    cmd->add_flag("--no-lowpass", o->req.cleaning.noLowPass, "switch the low-pass off");
-    cmd->add_flag("--no-steady-trim", o->req.cleaning.noSteadyTrim, "keep ramps");
     cmd->add_flag("--self-test", o->req.selfTest,
                   "recovery self-test: inject each candidate effect into replicas of these runs (fitted baseline + "
                   "effect + noise of the baseline residual) and report how often the selection detects it, confuses it "

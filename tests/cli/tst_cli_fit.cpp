@@ -264,6 +264,23 @@ private slots:
         QVERIFY2(r.err.contains("--model") && r.err.contains("magic"), r.err.constData());
     }
 
+    // fit and identify take the same input and cleaning options (one definition,
+    // cli_common addMeasuredInputOptions / addCleaningOptions): a low-pass above Nyquist is refused
+    // by both with the same message, before anything is fitted.
+    void fitAndIdentifyShareTheCleaningOptions() {
+        QTemporaryDir dir;
+        const QString good = damper("1Hz_30lb_1in.csv");
+        QByteArray msg[2];
+        int k = 0;
+        for (const char* cmd : {"fit", "identify"}) {
+            const Result r = runCli({cmd, "--data", good, "--lowpass-hz", "5000", "--report", dir.filePath("r.json")});
+            QVERIFY2(r.exitCode != 0 && r.err.contains("low-pass cut-off 5000"), r.err.constData());
+            msg[k++] = r.err.mid(r.err.indexOf(':', r.err.indexOf(cmd)));
+            QVERIFY(!QFile::exists(dir.filePath("r.json")));
+        }
+        QCOMPARE(msg[0], msg[1]);
+    }
+
     // identify --self-test: bad self-test options exit 2 naming the option and the value, before
     // any fit; a run writes the table to stdout and the report's self_test block.
     void identifySelfTest() {
