@@ -26,7 +26,7 @@ SectionStepping SectionStepping::of(const SimParams& p, long requestedN) {
     st.stepsPerPeriod = stepsPerPeriodFor(p, requestedN);
     st.period_s = p.drive.period();
     st.adaptive = p.integration.tolerance > 0.0;
-    st.options.tolerance = st.adaptive ? p.integration.tolerance : st.options.tolerance;
+    if (st.adaptive) st.options.tolerance = p.integration.tolerance;
     st.options.maxSteps = p.integration.maxSteps;
     return st;
 }

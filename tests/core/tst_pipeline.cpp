@@ -11,6 +11,17 @@ using namespace stickslip::identify;
 namespace {
 const std::string kShared = STICKSLIP_SHARED_DIR;
 const std::string kDamper = kShared + "/data/real/friction-damper/";
+
+// A quick Coulomb fit of one damper run.
+FitRequest oneDamperRunCoulomb() {
+    FitRequest req;
+    req.in.data = {kDamper + "1Hz_30lb_1in.csv"};
+    req.model = "coulomb";
+    req.free = "mu,epsT";
+    req.multistarts = 1;
+    req.maxIterations = 10;
+    return req;
+}
 }  // namespace
 
 class TstPipeline : public QObject {
@@ -45,12 +56,7 @@ private slots:
     }
 
     void fitRequestOnOneDamperRun() {
-        FitRequest req;
-        req.in.data = {kDamper + "1Hz_30lb_1in.csv"};
-        req.model = "coulomb";
-        req.free = "mu,epsT";
-        req.multistarts = 1;
-        req.maxIterations = 10;
+        FitRequest req = oneDamperRunCoulomb();
         std::vector<std::string> lines;
         req.log = [&](const std::string& l) { lines.push_back(l); };
         FitOutcome out;
@@ -77,12 +83,7 @@ private slots:
     // The law loop `fit` and the app's Fit tab share: each law fitted in turn, `fitted` called
     // after each with its index, progress over the whole loop, a cancelled loop reported so.
     void fitLawsFitsEachLawInTurn() {
-        FitRequest req;
-        req.in.data = {kDamper + "1Hz_30lb_1in.csv"};
-        req.model = "coulomb";
-        req.free = "mu,epsT";
-        req.multistarts = 1;
-        req.maxIterations = 10;
+        FitRequest req = oneDamperRunCoulomb();
         FitOutcome one;
         PipelineStatus st;
         QVERIFY2(runFitRequest(req, one, st), st.message.c_str());
