@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <ctime>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "main_window.hpp"
@@ -66,11 +67,25 @@ bool waitForRun(MainWindow& w, RunOutcome* out, int timeout_ms) {
 int main(int argc, char** argv) {
     if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
     QApplication app(argc, argv);
-    const int changes = argc > 1 ? std::max(5, std::atoi(argv[1])) : 50;
+    // Arguments: [changes] [--tolerance TOL] (the panel's error-controlled stepping; default: the
+    // preset's fixed dt).
+    int changes = 50;
+    double tolerance = 0.0;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--tolerance" && i + 1 < argc) tolerance = std::atof(argv[++i]);
+        else changes = std::max(5, std::atoi(argv[i]));
+    }
     MainWindow w(/*restoreSettings=*/false);
     w.resize(1280, 800);
     w.show();
-    if (!w.panel()->loadPreset("fig20") || !waitForRun(w, nullptr, 60000)) {
+    bool loaded = w.panel()->loadPreset("fig20");
+    if (loaded && tolerance > 0.0) {
+        ModelSettings s = w.panel()->settings();
+        s.tolerance = tolerance;
+        w.panel()->setSettings(s);
+    }
+    if (!loaded || !waitForRun(w, nullptr, 60000)) {
         std::fprintf(stderr, "bench_gui_latency: no first result\n");
         return 1;
     }
@@ -110,7 +125,9 @@ int main(int argc, char** argv) {
         // Next change from idle (a Poincaré job, when the run cannot record the section).
         while (!w.controller()->isIdle()) QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents);
     }
-    std::printf("bench_gui_latency: Fig. 20 preset, 20 cycles, %zu slider changes (offscreen)\n", latency.size());
+    std::printf("bench_gui_latency: Fig. 20 preset, 20 cycles, %s, %zu slider changes (offscreen)\n",
+                tolerance > 0.0 ? ("error-controlled steps, TOL " + std::to_string(tolerance)).c_str() : "fixed dt = T/10 000",
+                latency.size());
     std::printf("  slider change -> redrawn plots: median %.1f ms, p95 %.1f ms, max %.1f ms\n",
                 percentile(latency, 0.5), percentile(latency, 0.95), *std::max_element(latency.begin(), latency.end()));
     std::printf("  of which the worker's run:       median %.1f ms, p95 %.1f ms (CPU %.1f / %.1f ms)\n",

@@ -38,6 +38,7 @@ std::vector<LawKind> ModelSettings::laws() const {
 SimParams ModelSettings::paramsFor(LawKind law) const {
     SimParams p = params;
     p.law = law;
+    p.integration.tolerance = p.setup == SetupKind::Dynamics ? tolerance : 0.0;
     return p;
 }
 

@@ -23,11 +23,15 @@ struct ModelSettings {
     SimParams params;                         // params.law follows `model` (RateState for Both)
     ModelChoice model = ModelChoice::RateState;
     QString preset;                           // preset the values came from ("" if none)
+    // Stepping of the dynamics runs: 0 = the paper's fixed step dt; > 0 = the error-controlled
+    // integrator with this relative displacement error target (IntegrationParams::tolerance,
+    // 1e-5 … 0.5). The prescribed set-up always steps the measured grid (paramsFor sets 0).
+    double tolerance = 0.0;
     // The laws to run, primary first.
     std::vector<LawKind> laws() const;
     // The law the parameters follow: the choice's law, the rate-state law for Both.
     LawKind primaryLaw() const;
-    // params with law = `law`.
+    // params with law = `law` and the stepping above (tolerance only in the dynamics set-up).
     SimParams paramsFor(LawKind law) const;
 };
 

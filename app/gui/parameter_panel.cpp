@@ -120,8 +120,34 @@ void ParameterPanel::buildRows() {
             rows_.insert(s.key, row);
             ++r;
         }
+        if (g == ParamGroup::Integration) addSteppingRow(box, grid, r);
         top->addWidget(box);
     }
+}
+
+void ParameterPanel::addSteppingRow(QWidget* box, QGridLayout* grid, int row) {
+    steppingBox_ = new QComboBox(box);
+    steppingBox_->setObjectName("steppingBox");
+    steppingBox_->addItem(tr("fixed dt (the paper's algorithm)"), 0.0);
+    for (double tol : {1e-3, 1e-4, 1e-5})
+        steppingBox_->addItem(tr("error-controlled, TOL %1").arg(tol, 0, 'g', 1), tol);
+    steppingBox_->setToolTip(
+        tr("Dynamics runs: the paper's scheme with the fixed step dt, or the error-controlled integrator "
+           "(step doubling, stick-slip switches located, samples and Poincare points from its dense output at "
+           "the exact times) with TOL the relative error target on the displacement; dt is then not used. "
+           "The prescribed set-up always steps the given slip history."));
+    auto* label = new QLabel(tr("steps"), box);
+    label->setToolTip(steppingBox_->toolTip());
+    grid->addWidget(label, row, 0);
+    grid->addWidget(steppingBox_, row, 1, 1, 3);
+    connect(steppingBox_, qOverload<int>(&QComboBox::activated), this, &ParameterPanel::onStepping);
+}
+
+void ParameterPanel::onStepping(int index) {
+    if (updating_) return;
+    settings_.tolerance = steppingBox_->itemData(index).toDouble();
+    showValues();
+    changed();
 }
 
 QSlider* ParameterPanel::slider(const QString& key) const {
@@ -168,6 +194,7 @@ void ParameterPanel::onModel(int index) {
 void ParameterPanel::onSetup(int index) {
     if (updating_) return;
     settings_.params.setup = static_cast<SetupKind>(setupBox_->itemData(index).toInt());
+    showValues();
     changed();
 }
 
@@ -195,6 +222,8 @@ void ParameterPanel::setSettings(const ModelSettings& s) {
 
 void ParameterPanel::showValues() {
     updating_ = true;
+    const bool dynamics = settings_.params.setup == SetupKind::Dynamics;
+    const bool adaptive = dynamics && settings_.tolerance > 0.0;
     for (auto it = rows_.begin(); it != rows_.end(); ++it) {
         const ParamSpec* s = findSpec(it.key());
         double v = 0.0;
@@ -205,12 +234,20 @@ void ParameterPanel::showValues() {
         // switching the model does not move the panel's rows).
         bool used = !s->lawKey;
         for (LawKind law : settings_.laws()) used = used || lawHasParam(law, it.key().toStdString());
+        if (it.key() == "dt" && adaptive) used = false;  // the error-controlled integrator picks its steps
         it->spin->setEnabled(used);
         it->slider->setEnabled(used);
         it->label->setEnabled(used);
     }
     modelBox_->setCurrentIndex(modelBox_->findData(int(settings_.model)));
     setupBox_->setCurrentIndex(setupBox_->findData(int(settings_.params.setup)));
+    int si = steppingBox_->findData(settings_.tolerance);
+    if (si < 0) {  // a tolerance from a session that the list does not offer: add it
+        steppingBox_->addItem(tr("error-controlled, TOL %1").arg(settings_.tolerance, 0, 'g', 3), settings_.tolerance);
+        si = steppingBox_->count() - 1;
+    }
+    steppingBox_->setCurrentIndex(si);
+    steppingBox_->setEnabled(dynamics);
     const int pi = presetBox_->findData(settings_.preset);
     if (pi >= 0) presetBox_->setCurrentIndex(pi);
     updating_ = false;

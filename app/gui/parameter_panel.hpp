@@ -1,7 +1,8 @@
 // The parameter panel: for every control and law parameter a slider (logarithmic where the
 // range spans decades), a spin box and the unit, grouped as drive, rig, friction law and
 // integration; a model selector (rate-state, Coulomb, both overlaid), a set-up selector
-// (dynamics, prescribed slip), a preset selector with "reset to preset". Invalid
+// (dynamics, prescribed slip), a preset selector with "reset to preset", and in the
+// integration group the stepping (the paper's fixed dt or error-controlled at a tolerance). Invalid
 // combinations (SimParams::validate()) are flagged on the field and listed in words.
 // Emits ONE value, paramsChanged(ModelSettings), for every change. It never computes.
 #pragma once
@@ -12,6 +13,7 @@
 #include "model_settings.hpp"
 
 class QComboBox;
+class QGridLayout;
 class QDoubleSpinBox;
 class QLabel;
 class QSlider;
@@ -36,6 +38,8 @@ public:
     QComboBox* modelBox() const { return modelBox_; }
     QComboBox* setupBox() const { return setupBox_; }
     QComboBox* presetBox() const { return presetBox_; }
+    // Stepping of dynamics runs: the paper's fixed dt, or error-controlled at a tolerance.
+    QComboBox* steppingBox() const { return steppingBox_; }
     // The current validation issues in words ("" when valid).
     QString issuesText() const;
 
@@ -52,11 +56,13 @@ private:
         QLabel* label = nullptr;
     };
     void buildRows();
+    void addSteppingRow(QWidget* box, QGridLayout* grid, int row);
     void onSlider(const QString& key, int position);
     void onSpin(const QString& key, double displayValue);
     void onModel(int index);
     void onSetup(int index);
     void onPreset(int index);
+    void onStepping(int index);
     void showValues();      // settings_ → widgets, without signals
     void showIssues();      // validate and flag
     void changed();         // showIssues + emit
@@ -66,6 +72,7 @@ private:
     QComboBox* presetBox_ = nullptr;
     QComboBox* modelBox_ = nullptr;
     QComboBox* setupBox_ = nullptr;
+    QComboBox* steppingBox_ = nullptr;
     QPushButton* resetButton_ = nullptr;
     QLabel* issuesLabel_ = nullptr;
     bool updating_ = false;

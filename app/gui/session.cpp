@@ -14,9 +14,10 @@ namespace stickslip::gui {
 namespace {
 // Session format version written by this program. Readers accept every version up to this
 // one (1: the first format; files without "program", "coulomb", "views" or "windowState", as
-// hand-written or early sessions are, load with those left at their defaults) and refuse a
-// newer one (naming it) rather than guessing at fields they do not know.
-constexpr int kFormat = 1;
+// hand-written or early sessions are, load with those left at their defaults; 2: adds
+// "tolerance", the stepping of dynamics runs, 0 = fixed dt, which version 1 files load with)
+// and refuse a newer one (naming it) rather than guessing at fields they do not know.
+constexpr int kFormat = 2;
 }
 
 QByteArray Session::toJson() const {
@@ -34,6 +35,7 @@ QByteArray Session::toJson() const {
         {"program", QString::fromLatin1(kVersion)},
         {"model", toString(settings.model)},
         {"setup", QString::fromLatin1(stickslip::toString(settings.params.setup))},
+        {"tolerance", settings.tolerance},
         {"preset", settings.preset},
         {"params", params},
         {"coulomb", coulomb},
@@ -80,6 +82,13 @@ bool Session::fromJson(const QByteArray& json, Session& out, QString* error) {
         return fail(QStringLiteral("unknown set-up \"%1\" (dynamics or prescribed)").arg(root.value("setup").toString()));
     s.settings.params.law = s.settings.primaryLaw();
     s.settings.preset = root.value("preset").toString();
+    if (root.contains("tolerance")) {
+        IntegrationParams ip;
+        ip.tolerance = root.value("tolerance").toDouble(std::nan(""));
+        if (!root.value("tolerance").isDouble() || !ip.validate().empty())
+            return fail(QStringLiteral("\"tolerance\" must be 0 (fixed step) or in [1e-5, 0.5]"));
+        s.settings.tolerance = ip.tolerance;
+    }
     const QJsonObject params = root.value("params").toObject();
     for (auto it = params.begin(); it != params.end(); ++it) {
         if (!it.value().isDouble() || !std::isfinite(it.value().toDouble()))

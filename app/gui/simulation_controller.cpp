@@ -90,8 +90,10 @@ bool SimulationController::isIdle() const {
 }
 
 bool SimulationController::sectionFromRun(const ModelSettings& settings) {
-    const SimParams& p = settings.params;
-    return p.setup == SetupKind::Dynamics && stepsPerPeriodDividing(p) > 0 &&
+    // A fixed-step run records once-per-period states when dt divides T; an error-controlled
+    // run always does (from its dense output at exactly t = kT).
+    const SimParams p = settings.paramsFor(settings.primaryLaw());
+    return p.setup == SetupKind::Dynamics && (p.integration.tolerance > 0.0 || stepsPerPeriodDividing(p) > 0) &&
            p.transientCycles == std::round(p.transientCycles) && p.cycles == std::round(p.cycles) && p.cycles >= 1;
 }
 

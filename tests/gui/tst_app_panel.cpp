@@ -92,6 +92,37 @@ private slots:
         QVERIFY(panel.settings().params.setup == SetupKind::Prescribed);
     }
 
+    // The stepping choice: one value per change, dt greyed out while error-controlled (the
+    // integrator picks its steps), the tolerance reaching the runs only in the dynamics set-up,
+    // and kept across preset switches like the model choice.
+    void steppingChoiceReachesDynamicsRuns() {
+        ParameterPanel panel;
+        QComboBox* box = panel.steppingBox();
+        QVERIFY(box);
+        QCOMPARE(box->currentData().toDouble(), 0.0);  // the paper's fixed step by default
+        QVERIFY(panel.spinBox("dt")->isEnabled());
+        QSignalSpy spy(&panel, &ParameterPanel::paramsChanged);
+        const int i = box->findData(1e-4);
+        QVERIFY(i > 0);
+        box->setCurrentIndex(i);
+        emit box->activated(i);
+        QCOMPARE(spy.count(), 1);
+        const ModelSettings s = spy.last().first().value<ModelSettings>();
+        QCOMPARE(s.tolerance, 1e-4);
+        QCOMPARE(s.paramsFor(LawKind::RateState).integration.tolerance, 1e-4);
+        QCOMPARE(s.paramsFor(LawKind::Coulomb).integration.tolerance, 1e-4);
+        QVERIFY(!panel.spinBox("dt")->isEnabled());
+        QVERIFY(panel.issuesText().isEmpty());
+        QVERIFY(panel.loadPreset("fig19"));
+        QCOMPARE(panel.settings().tolerance, 1e-4);
+        QCOMPARE(box->currentData().toDouble(), 1e-4);
+        panel.setupBox()->setCurrentIndex(panel.setupBox()->findData(int(SetupKind::Prescribed)));
+        QVERIFY(!box->isEnabled());
+        QVERIFY(panel.spinBox("dt")->isEnabled());
+        QCOMPARE(panel.settings().paramsFor(LawKind::RateState).integration.tolerance, 0.0);
+        QVERIFY2(panel.issuesText().isEmpty(), qPrintable(panel.issuesText()));
+    }
+
     void presetsAndReset() {
         ParameterPanel panel;
         QSignalSpy spy(&panel, &ParameterPanel::paramsChanged);
@@ -136,6 +167,7 @@ private slots:
         s.settings.params.lawParams<CoulombParams>().mu = 0.31;   // the Coulomb law may differ
         s.settings.model = ModelChoice::Both;
         s.settings.preset = "fig23";
+        s.settings.tolerance = 1e-5;
         s.visibleViews = QStringList{"timeseries", "rig"};
         s.measuredFile = "/tmp/x.csv";
         QTemporaryDir dir;
@@ -155,6 +187,7 @@ private slots:
         QVERIFY(back.settings.model == ModelChoice::Both);
         QVERIFY(back.settings.params.setup == s.settings.params.setup);
         QCOMPARE(back.settings.preset, QString("fig23"));
+        QCOMPARE(back.settings.tolerance, 1e-5);
         QCOMPARE(back.visibleViews, s.visibleViews);
         QCOMPARE(back.measuredFile, s.measuredFile);
     }

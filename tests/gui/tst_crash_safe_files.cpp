@@ -90,6 +90,7 @@ private slots:
         QTest::newRow("v1 full") << fixture("session_v1_full.json");
         QTest::newRow("v1 minimal") << fixture("session_v1_minimal.json");
         QTest::newRow("no version") << fixture("session_no_version.json");
+        QTest::newRow("v2 tolerance") << fixture("session_v2_tolerance.json");
         QTest::newRow("docs example") << QStringLiteral(STICKSLIP_SOURCE_DIR "/docs/sessions/fig20-irregular.json");
     }
 
@@ -100,6 +101,9 @@ private slots:
         QVERIFY2(loadSession(file, s, &why), qPrintable(why));
         QCOMPARE(s.settings.params.rig.normalForce_N, 6.2);
         QVERIFY(s.settings.params.validate().empty());
+        // Version 2 adds the stepping; older files load with the fixed step.
+        QCOMPARE(s.settings.tolerance, file.contains("v2_tolerance") ? 1e-4 : 0.0);
+        QCOMPARE(s.settings.paramsFor(s.settings.primaryLaw()).integration.tolerance, s.settings.tolerance);
     }
 
     void unreadableSessionsSayWhyAndWhere_data() {
@@ -108,6 +112,8 @@ private slots:
         QTest::newRow("future") << fixture("session_v99_future.json") << "version 99 was written by a newer";
         QTest::newRow("other schema") << fixture("session_wrong_schema.json") << "not a StickSlip Lab session";
         QTest::newRow("bad version") << fixture("session_bad_version.json") << "\"version\" must be a whole number";
+        QTest::newRow("bad tolerance") << fixture("session_v2_bad_tolerance.json")
+                                       << "\"tolerance\" must be 0 (fixed step) or in [1e-5, 0.5]";
     }
 
     void unreadableSessionsSayWhyAndWhere() {
