@@ -108,10 +108,12 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
         alpha = alphaAt(x, da);
     } else {
         const double y0 = tN * (mu + h);
+        double eAlpha = 1.0;  // exp(α/r) at the last evaluated α: the next step's exp(α_n/r)
         auto eval = [&](double xx, double& R, double& dRx, double& al) {
             double da = 0;
             al = alphaAt(xx, da);
-            const double e = std::exp(al * invR);
+            const double e = std::exp(al / base.r);  // as e0 forms it, so the cache below holds exactly e0
+            eAlpha = e;
             R = a - eps * xx - y0 - tN * base.C1 * (e - 1.0) - visc * xx;
             dRx = -eps - visc - tN * base.C1 * invR * e * da;
         };
@@ -139,6 +141,8 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
             res.iterations = it + 1;
             res.converged = ok;
         }
+        // α_{n+1} is the next step's α_n: hand its exponential on instead of recomputing it.
+        if (cache) cache->alpha = alpha, cache->e = eAlpha;
     }
     res.slipIncrement_m = x;
     res.state.force_N = s * (a - eps * x);
