@@ -177,7 +177,7 @@ void SweepDialog::setOptions(const SweepOptions& o) {
 void SweepDialog::start() {
     const ModelSettings s = current_();
     const SweepOptions o = options();
-    if (beginRun(o.validate(s.params))) controller_->startSweep(s, o);
+    if (beginRun(o.validate(s.paramsFor(s.primaryLaw())))) controller_->startSweep(s, o);
 }
 
 void SweepDialog::cancelRun() { requestCancel(JobKind::Sweep); }
@@ -241,7 +241,7 @@ MapOptions MapDialog::options() const {
 void MapDialog::start() {
     const ModelSettings s = current_();
     const MapOptions o = options();
-    if (beginRun(o.validate(s.params))) controller_->startMap(s, o);
+    if (beginRun(o.validate(s.paramsFor(s.primaryLaw())))) controller_->startMap(s, o);
 }
 
 void MapDialog::cancelRun() { requestCancel(JobKind::Map); }

@@ -171,6 +171,37 @@ private slots:
         QVERIFY(!w->views()->frictionLoop()->hasPendingUpdate());
     }
 
+    // Error-controlled stepping chosen in the Integration group: the worker's run is the core's
+    // adaptive run of the same parameters (samples on the output grid, not on internal steps),
+    // and the run records its Poincaré section from the dense output (no Poincaré job).
+    void errorControlledSteppingEndToEnd() {
+        QComboBox* box = w->panel()->steppingBox();
+        const int i = box->findData(1e-4);
+        QVERIFY(i > 0);
+        const int poincareJobs = w->controller()->launchedCount(JobKind::Poincare);
+        box->setCurrentIndex(i);
+        emit box->activated(i);
+        RunOutcome o;
+        QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return s.tolerance == 1e-4; }, &o));
+        const SimParams p = o.settings.paramsFor(LawKind::RateState);
+        QCOMPARE(p.integration.tolerance, 1e-4);
+        const RunResult direct = simulate(p);
+        QVERIFY(direct.ok());
+        QCOMPARE(o.runs.front().run.samples.size(), direct.samples.size());
+        const double spacing = p.integration.outputInterval_s;
+        for (size_t k = 0; k < direct.samples.size(); k += 53) {
+            QCOMPARE(o.runs.front().run.samples[k].slider_m, direct.samples[k].slider_m);
+            QVERIFY(std::abs(direct.samples[k].t_s - (direct.samples.front().t_s + k * spacing)) < 1e-9);
+        }
+        QVERIFY(o.sectionInRun);
+        QCOMPARE(w->controller()->launchedCount(JobKind::Poincare), poincareJobs);
+        QVERIFY(!o.runs.front().section.slider_m.empty());
+        // Back to the paper's fixed step for the tests below.
+        box->setCurrentIndex(0);
+        emit box->activated(0);
+        QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return s.tolerance == 0.0; }));
+    }
+
     void presetSwitch() {
         w->panel()->loadPreset("fig16");   // prescribed slip, 5 cycles
         RunOutcome o;
