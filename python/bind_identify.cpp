@@ -102,7 +102,7 @@ Setters<IdentifyRequest> identifySetters() {
         o("identifiability_alpha", &IdentifyOptions::identifiabilityAlpha), o("decimate", &IdentifyOptions::decimate),
         o("substeps", &IdentifyOptions::substeps), o("multistarts", &IdentifyOptions::multistarts),
         o("max_segments", &IdentifyOptions::maxSegmentsPerRun), o("seed", &IdentifyOptions::seed),
-        o("confounded_vif", &IdentifyOptions::confoundedVif),
+        o("confounded_vif", &IdentifyOptions::confoundedVif), o("held_out_restart", &IdentifyOptions::heldOutRestart),
         fn<R>("self_test", [](R& r, py::handle v) { r.selfTest = v.cast<bool>(); }),
         fn<R>("self_test_replicas", [](R& r, py::handle v) { r.selfTestReplicas = v.cast<int>(); }),
         fn<R>("self_test_levels", [](R& r, py::handle v) {

@@ -119,6 +119,28 @@ struct Round {
     }
 };
 
+// IdentifyOptions::heldOutRestart: the leave-one-run-out refits (`loo`) are warm-started from
+// the full fit; one whose point fits all the fit runs better than the full fit shows that the
+// full fit stopped in a worse minimum. The model is then refitted from the best such point and
+// kept if it ends lower. True when the model changed.
+bool restartFromHeldOut(Loop& L, const std::vector<std::map<std::string, double>>& loo) {
+    double bestSS = L.cur.ss * (1.0 - 1e-6);
+    const std::map<std::string, double>* best = nullptr;
+    for (const auto& v : loo) {
+        const double ss = evalSS(L.cx, L.spec, v, L.fitIdx);
+        if (std::isfinite(ss) && ss < bestSS) bestSS = ss, best = &v;
+    }
+    if (!best) return false;
+    L.progress("baseline: refit from a held-out refit's point", 0.0);
+    FitOutcome g = fitSpec(L.cx, L.spec, *best, L.fitIdx, 1, L.res.fits);
+    if (!g.ok || !(g.ss < L.cur.ss)) return false;
+    L.res.baselineNote = "the full fit ended at sum of squares " + std::to_string(L.cur.ss) + "; a leave-one-run-out "
+                         "refit's point fitted all runs at " + std::to_string(bestSS) + ", so the baseline was "
+                         "refitted from it (" + std::to_string(g.ss) + ")";
+    L.cur = std::move(g);
+    return true;
+}
+
 // Fits the baseline (the law alone) and records "before". False with res.message on failure.
 bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
     L.progress("baseline", 0.0);
@@ -131,9 +153,14 @@ bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
         L.res.message = "baseline fit failed: " + L.cur.message;
         return false;
     }
-    L.res.baseline = L.cur.estimates;
     if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
-    L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
+    std::vector<std::map<std::string, double>> loo;
+    L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits, &loo);
+    if (L.opt.heldOutRestart && restartFromHeldOut(L, loo)) {
+        if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
+        L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
+    }
+    L.res.baseline = L.cur.estimates;
     L.res.diagnosticsBefore = diagnoseModel(L.cx, L.spec, L.cur, &L.predBefore);
     L.curDiag = L.res.diagnosticsBefore;
     L.res.tauInt = L.curDiag.integratedAcfTime;

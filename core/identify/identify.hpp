@@ -128,6 +128,11 @@ struct IdentifyOptions {
     int substeps = 2;                // law steps per sample (prescribed)
     double stickVelocity_mps = 5e-3; // |V| below this counts as stuck (dynamics channel, diagnostics)
     int multistarts = 2;
+    // Baseline restart from held-out refits (experimental, off by default until measured on all
+    // sets): a leave-one-run-out refit, warm-started from the full fit, that fits ALL the fit
+    // runs better than the full fit did shows the full fit stopped in a worse minimum; the
+    // baseline is then refitted from the best such point and its errors recomputed.
+    bool heldOutRestart = false;
     DynamicsResidual dynamicsResidual = DynamicsResidual::EquationError;  // see above
     int maxSegmentsPerRun = 12;      // Segments: at most this many segments per run (evenly spread)
     int segmentSubsteps = 8;         // Segments: Newmark steps per (decimated) sample
@@ -217,6 +222,7 @@ struct IdentifyResult {
     std::string message;
     std::string setup;
     std::vector<ParamEstimate> baseline;  // baseline model parameters ± stderr
+    std::string baselineNote;             // how the baseline was reached when not by its own fit (heldOutRestart)
     std::vector<ParamEstimate> final;     // final model parameters ± stderr
     ModelErrors before, after;
     std::vector<AddedEffect> effectsAdded;

@@ -62,6 +62,7 @@ nlohmann::json toJson(const IdentifyResult& r) {
     if (!r.message.empty()) j["message"] = r.message;
     j["setup"] = r.setup;
     j["baseline"] = {{"model", "rate-state"}, {"parameters", toJson(r.baseline)}};
+    if (!r.baselineNote.empty()) j["baseline"]["note"] = r.baselineNote;
     j["before"] = toJson(r.before);
     j["after"] = toJson(r.after);
     j["final_parameters"] = toJson(r.final);
