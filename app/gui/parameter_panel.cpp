@@ -125,12 +125,16 @@ void ParameterPanel::buildRows() {
     }
 }
 
+QString ParameterPanel::steppingLabel(double tolerance) {
+    return tr("error-controlled, TOL %1").arg(tolerance, 0, 'g', 3);
+}
+
 void ParameterPanel::addSteppingRow(QWidget* box, QGridLayout* grid, int row) {
     steppingBox_ = new QComboBox(box);
     steppingBox_->setObjectName("steppingBox");
     steppingBox_->addItem(tr("fixed dt (the paper's algorithm)"), 0.0);
     for (double tol : {1e-3, 1e-4, 1e-5})
-        steppingBox_->addItem(tr("error-controlled, TOL %1").arg(tol, 0, 'g', 1), tol);
+        steppingBox_->addItem(steppingLabel(tol), tol);
     steppingBox_->setToolTip(
         tr("Dynamics runs: the paper's scheme with the fixed step dt, or the error-controlled integrator "
            "(step doubling, stick-slip switches located, samples and Poincare points from its dense output at "
@@ -243,7 +247,7 @@ void ParameterPanel::showValues() {
     setupBox_->setCurrentIndex(setupBox_->findData(int(settings_.params.setup)));
     int si = steppingBox_->findData(settings_.tolerance);
     if (si < 0) {  // a tolerance from a session that the list does not offer: add it
-        steppingBox_->addItem(tr("error-controlled, TOL %1").arg(settings_.tolerance, 0, 'g', 3), settings_.tolerance);
+        steppingBox_->addItem(steppingLabel(settings_.tolerance), settings_.tolerance);
         si = steppingBox_->count() - 1;
     }
     steppingBox_->setCurrentIndex(si);

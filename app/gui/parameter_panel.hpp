@@ -56,6 +56,7 @@ private:
         QLabel* label = nullptr;
     };
     void buildRows();
+    static QString steppingLabel(double tolerance);  // the stepping row's text for an error-controlled TOL
     void addSteppingRow(QWidget* box, QGridLayout* grid, int row);
     void onSlider(const QString& key, int position);
     void onSpin(const QString& key, double displayValue);

@@ -85,8 +85,10 @@ bool Session::fromJson(const QByteArray& json, Session& out, QString* error) {
     if (root.contains("tolerance")) {
         IntegrationParams ip;
         ip.tolerance = root.value("tolerance").toDouble(std::nan(""));
-        if (!root.value("tolerance").isDouble() || !ip.validate().empty())
-            return fail(QStringLiteral("\"tolerance\" must be 0 (fixed step) or in [1e-5, 0.5]"));
+        const ParamIssues issues = ip.validate();  // the allowed range is IntegrationParams's own
+        for (const ParamIssue& i : issues)
+            if (i.field == "tolerance")  // a non-number reads as NaN, which is refused too
+                return fail(QStringLiteral("\"tolerance\" must be %1").arg(QString::fromStdString(i.allowed)));
         s.settings.tolerance = ip.tolerance;
     }
     const QJsonObject params = root.value("params").toObject();
