@@ -128,11 +128,11 @@ struct IdentifyOptions {
     int substeps = 2;                // law steps per sample (prescribed)
     double stickVelocity_mps = 5e-3; // |V| below this counts as stuck (dynamics channel, diagnostics)
     int multistarts = 2;
-    // Baseline restart from held-out refits (experimental, off by default until measured on all
-    // sets): a leave-one-run-out refit, warm-started from the full fit, that fits ALL the fit
-    // runs better than the full fit did shows the full fit stopped in a worse minimum; the
-    // baseline is then refitted from the best such point and its errors recomputed.
-    bool heldOutRestart = false;
+    // Baseline restart from held-out refits: a leave-one-run-out refit, warm-started from the
+    // full fit, that fits ALL the fit runs better than the full fit did shows the full fit
+    // stopped in a worse minimum; the baseline is then refitted from the best such point and its
+    // errors recomputed (docs/identify-results.md, session 13: measured on all 18 sets).
+    bool heldOutRestart = true;
     DynamicsResidual dynamicsResidual = DynamicsResidual::EquationError;  // see above
     int maxSegmentsPerRun = 12;      // Segments: at most this many segments per run (evenly spread)
     int segmentSubsteps = 8;         // Segments: Newmark steps per (decimated) sample

@@ -112,6 +112,12 @@ private slots:
                   c.heldOutP, c.sizeValue, c.sizeStderr, c.sizeCritical, c.accepted ? "added" : c.reason.c_str());
         qInfo("%s: held-out NRMSE before %.4f after %.4f, fit before %.4f after %.4f, unexplained %d", name.c_str(),
               r.before.validationNrmse, r.after.validationNrmse, r.before.fitNrmse, r.after.fitNrmse, int(r.unexplained));
+        // The baseline converged (issue 14 item 1): a fit stopped in a worse minimum fits its
+        // own runs worse than its leave-one-run-out refits predict the held-out ones, the
+        // signature IdentifyOptions::heldOutRestart detects and repairs (on D16 without it:
+        // 0.1336 in-sample against 0.0996 held-out; docs/identify-results.md, session 13).
+        if (!r.baselineNote.empty()) qInfo("%s: %s", name.c_str(), r.baselineNote.c_str());
+        QVERIFY2(r.before.fitNrmse <= 1.1 * r.before.validationNrmse, "baseline in-sample error above its held-out error");
         // Whatever it adds never makes the held-out error worse.
         QVERIFY(r.after.validationNrmse <= r.before.validationNrmse);
         std::set<std::string> got;
@@ -147,24 +153,6 @@ private slots:
         if (!r.effectsAdded.empty()) QVERIFY(r.after.validationNrmse < r.before.validationNrmse);
     }
 
-    // IdentifyOptions::heldOutRestart (experimental, off by default): on D16 (no effect in the
-    // key) the default baseline fit stops in a poor minimum (fit / held-out NRMSE 0.1336 / 0.0996,
-    // docs/identify-results.md); its leave-one-run-out refits find points that fit all five runs
-    // ten times better, and the restart from the best of them reaches 0.0404 / 0.0432
-    // (measured 2026-11-26). Baseline only (no candidates).
-    void heldOutRestartRescuesAPoorBaseline() {
-        IdentifyOptions opt;
-        opt.maxEffects = 0;
-        opt.heldOutRestart = true;
-        const IdentifyResult r = identifySet("D16", opt);
-        QVERIFY2(r.ok, r.message.c_str());
-        qInfo("D16 with the restart: fit NRMSE %.4f, held-out %.4f; %s", r.before.fitNrmse, r.before.validationNrmse,
-              r.baselineNote.c_str());
-        QVERIFY2(!r.baselineNote.empty(), "the restart did not trigger");
-        QVERIFY(r.before.fitNrmse < 0.06);
-        QVERIFY(r.before.validationNrmse < 0.06);
-        QVERIFY(r.before.fitNrmse <= r.before.validationNrmse * 1.1);  // no longer above its held-out error
-    }
 };
 
 QTEST_APPLESS_MAIN(TstIdentifySynthetic)
