@@ -2,9 +2,10 @@
 # The sanitizer pass, part of .ci/run: core, CLI, GUI and their tests built in build-asan/ with
 # -fsanitize=address,undefined (-O1 -g1: the optimisation level the AddressSanitizer documentation
 # recommends, at about half the instrumented compile time of -O2 (core/identify/fit.cpp: 95 s
-# against 177 s), and line tables for the reports instead of full debug info) and run; any sanitizer report fails the pass. GUI tests run
-# offscreen; leaks inside Qt's and the system libraries' own code are suppressed by the
-# reviewed list in scripts/lsan.supp (never a frame of ours).
+# against 177 s), and line tables for the reports instead of full debug info) and run; any
+# sanitizer report fails the pass. GUI tests run offscreen; leaks inside Qt's and the system
+# libraries' own code are suppressed by the reviewed list in scripts/lsan.supp (never a frame of
+# ours).
 # The heaviest fits run as smaller cases (tests/CMakeLists.txt: core_tst_identify_synthetic_small,
 # core_tst_fit_dynamics_small) instead of the full ones that the Release pass runs.
 set -euo pipefail
