@@ -41,6 +41,26 @@ bool waitForStderr(QProcess& p, const QByteArray& marker, QByteArray& err, int t
     return false;
 }
 
+// Waits until process `pid` has a handler of its own for `sig` (the SigCgt mask of
+// /proc/<pid>/status): a signal sent earlier, while the process is still loading its libraries,
+// would meet the default action and kill it, whatever the command does with the signal later.
+bool waitForHandler(qint64 pid, int sig, int timeout_ms) {
+    QElapsedTimer t;
+    t.start();
+    while (t.elapsed() < timeout_ms) {
+        QFile status(QStringLiteral("/proc/%1/status").arg(pid));
+        if (!status.open(QIODevice::ReadOnly)) return false;
+        for (const QByteArray& line : status.readAll().split('\n')) {
+            if (!line.startsWith("SigCgt:")) continue;
+            bool ok = false;
+            const qulonglong mask = line.mid(7).trimmed().toULongLong(&ok, 16);
+            if (ok && (mask >> (sig - 1)) & 1u) return true;
+        }
+        QThread::msleep(10);
+    }
+    return false;
+}
+
 // Files in `dir` other than those named.
 QStringList othersIn(const QString& dir, const QStringList& known) {
     QStringList extra;
@@ -92,6 +112,7 @@ class TstCliCancel : public QObject {
         p.start(QStringLiteral(STICKSLIP_CLI), args);
         QByteArray err;
         QVERIFY2(waitForStderr(p, startedMarker, err, 600000), err.constData());
+        QVERIFY2(waitForHandler(p.processId(), sig, 600000), "the command never installed its signal handler");
         QThread::msleep(300);
         QVERIFY2(p.state() == QProcess::Running, "the job ended before it could be cancelled: make it longer");
         ::kill(static_cast<pid_t>(p.processId()), sig);
