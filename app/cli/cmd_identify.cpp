@@ -120,8 +120,9 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--substeps", o->req.options.substeps, "prescribed: law steps per used sample")->capture_default_str();
     cmd->add_option("--multistarts", o->req.options.multistarts, "starting points per fit")->capture_default_str();
     cmd->add_flag("--held-out-restart,!--no-held-out-restart", o->req.options.heldOutRestart,
-                  "refit the baseline from a leave-one-run-out refit's point when that point fits all runs better "
-                  "than the full fit (the full fit stopped in a worse minimum); on by default")->capture_default_str();
+                  "refit the baseline, and a candidate before it is judged, from a leave-one-run-out refit's point "
+                  "when that point fits all runs better than the full fit by more than --bic-margin in BIC (the full "
+                  "fit stopped in a worse minimum); on by default")->capture_default_str();
     cmd->add_option("--dynamics-residual", o->req.dynamicsResidual,
                     "dynamics set-up: equation-error (default: the law run along the measured slip, every effect applicable, "
                     "+ the rig's equation of motion), auto (contact effects scored on re-initialised simulated segments; "

@@ -56,7 +56,9 @@ struct Tried {
     CandidateScore sc;
     FitOutcome fit;
     Spec spec;
+    double bicBase = 0;  // the criterion of the model it extends
 };
+
 
 // The loop's state: the current model, its fit, errors and diagnostics, and every score so far.
 struct Loop {
@@ -80,14 +82,30 @@ struct Loop {
     }
     // The penalised criterion with the effective sample count capped by the independent units
     // (slip episodes, or segments with the segment residual).
-    double bicOf(const FitOutcome& f, const Spec& s, double tauInt) const {
+    double bicOf(const FitOutcome& f, const Spec& s, double tauInt) const { return bicAt(f.ss, f, s, tauInt); }
+    // The same criterion for the model of `f` at another sum of squares `ss` (same data, same
+    // free parameters).
+    double bicAt(double ss, const FitOutcome& f, const Spec& s, double tauInt) const {
         const double cap = std::min(f.count / std::max(tauInt, 1.0), s.segments ? std::max(segEpisodes, 2.0) : episodes);
-        return bic(f.ss, f.count, cap, f.nFree);
+        return bic(ss, f.count, cap, f.nFree);
     }
     std::string residualName(const Spec& s) const {
         return !cx.anyDynamics ? std::string("prescribed") : s.segments ? std::string("segments") : std::string("equation_error");
     }
 };
+
+// The candidate's figures from its fit: ΔBIC against the model it extends, fit error, its
+// parameters and how its size trades off with the others.
+void scoreFit(const Loop& L, Tried& t) {
+    CandidateScore& sc = t.sc;
+    const FitOutcome& f = t.fit;
+    sc.deltaBic = L.bicOf(f, t.spec, t.spec.segments == L.spec.segments ? L.curDiag.integratedAcfTime : 1.0) - t.bicBase;
+    sc.fitNrmse = f.count > 0 ? std::sqrt(f.ss / f.count) : 0.0;
+    sc.params.clear();
+    for (const ParamEstimate& p : f.estimates)
+        if (p.name.rfind(sc.name + ".", 0) == 0) sc.params.push_back({p.name.substr(sc.name.size() + 1), p.value, p.stderr_});
+    sc.sizeCorrelation = sizeCorrelations(f.fit, sc.name);
+}
 
 // One round's view of the current model refitted with the segment residual (for the stick-phase
 // candidates of the Auto residual), made lazily, at most once per round.
@@ -120,24 +138,34 @@ struct Round {
 };
 
 // IdentifyOptions::heldOutRestart: the leave-one-run-out refits (`loo`) are warm-started from
-// the full fit; one whose point fits all the fit runs better than the full fit shows that the
-// full fit stopped in a worse minimum. The model is then refitted from the best such point and
-// kept if it ends lower. True when the model changed.
-bool restartFromHeldOut(Loop& L, const std::vector<std::map<std::string, double>>& loo) {
-    double bestSS = L.cur.ss * (1.0 - 1e-6);
+// the fit they check; one whose point fits all the fit runs better than that fit shows it stopped
+// in a worse minimum. The restart is taken only when that point's gain is evidence on the scale
+// the loop asks of an effect (lower BIC by more than bicMargin, τ_int = 1: the larger n_eff, so in
+// doubt it restarts); a smaller gain could not change a verdict and costs a fit and the held-out
+// refits again. The model is then refitted from the best such point and kept if it ends lower.
+// The same guard for every model the loop keeps (the baseline, a candidate about to be judged).
+// True when `fit` changed; `note` says what was found either way.
+bool restartFromHeldOut(Loop& L, const Spec& spec, FitOutcome& fit, const std::vector<std::map<std::string, double>>& loo,
+                        std::string& note) {
+    double bestSS = fit.ss * (1.0 - 1e-6);
     const std::map<std::string, double>* best = nullptr;
     for (const auto& v : loo) {
-        const double ss = evalSS(L.cx, L.spec, v, L.fitIdx);
+        const double ss = evalSS(L.cx, spec, v, L.fitIdx);
         if (std::isfinite(ss) && ss < bestSS) bestSS = ss, best = &v;
     }
     if (!best) return false;
-    L.progress("baseline: refit from a held-out refit's point", 0.0);
-    FitOutcome g = fitSpec(L.cx, L.spec, *best, L.fitIdx, 1, L.res.fits);
-    if (!g.ok || !(g.ss < L.cur.ss)) return false;
-    L.res.baselineNote = "the full fit ended at sum of squares " + std::to_string(L.cur.ss) + "; a leave-one-run-out "
-                         "refit's point fitted all runs at " + std::to_string(bestSS) + ", so the baseline was "
-                         "refitted from it (" + std::to_string(g.ss) + ")";
-    L.cur = std::move(g);
+    const double gain = L.bicOf(fit, spec, 1.0) - L.bicAt(bestSS, fit, spec, 1.0);
+    const std::string found = "a leave-one-run-out refit's point fitted all runs at sum of squares " + std::to_string(bestSS) +
+                              " against the full fit's " + std::to_string(fit.ss) + " (BIC lower by " + std::to_string(gain);
+    if (!restartWorthIt(gain, L.opt.bicMargin)) {
+        note = found + ", not more than the margin " + std::to_string(L.opt.bicMargin) + "): the full fit kept";
+        return false;
+    }
+    L.progress("refit from a held-out refit's point", 0.0);
+    FitOutcome g = fitSpec(L.cx, spec, *best, L.fitIdx, 1, L.res.fits);
+    if (!g.ok || !(g.ss < fit.ss)) return false;
+    note = found + "): the full fit stopped in a worse minimum and was refitted from that point (" + std::to_string(g.ss) + ")";
+    fit = std::move(g);
     return true;
 }
 
@@ -156,7 +184,7 @@ bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
     if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
     std::vector<std::map<std::string, double>> loo;
     L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits, &loo);
-    if (L.opt.heldOutRestart && restartFromHeldOut(L, loo)) {
+    if (L.opt.heldOutRestart && restartFromHeldOut(L, L.spec, L.cur, loo, L.res.baselineNote)) {
         if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
         L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
     }
@@ -231,22 +259,19 @@ std::optional<Tried> fitCandidate(Loop& L, Round& R, const std::string& c) {
             side.clear();
         }
     }
-    sc.deltaBic = L.bicOf(f, s2, s2.segments == L.spec.segments ? L.curDiag.integratedAcfTime : 1.0) - bicBase;
-    sc.fitNrmse = f.count > 0 ? std::sqrt(f.ss / f.count) : 0.0;
-    for (const ParamEstimate& p : f.estimates)
-        if (p.name.rfind(c + ".", 0) == 0) sc.params.push_back({p.name.substr(c.size() + 1), p.value, p.stderr_});
-    sc.sizeCorrelation = sizeCorrelations(f.fit, c);
     sc.startNote = startNote;
+    Tried t{sc, std::move(f), s2, bicBase};
+    scoreFit(L, t);
     if (!side.empty()) {
         EffectInfo info;
         findEffect(c, info);
-        sc.reason = startNote + "parameter " + info.params.front().name + " ended on its physical " + side +
-                    " bound from two starts (scanned, and halfway to the bound): the data's answer, not a solver "
-                    "failure; not identified (dBIC " + std::to_string(sc.deltaBic) + " not credited)";
-        L.scores[c] = sc;
+        t.sc.reason = startNote + "parameter " + info.params.front().name + " ended on its physical " + side +
+                      " bound from two starts (scanned, and halfway to the bound): the data's answer, not a solver "
+                      "failure; not identified (dBIC " + std::to_string(t.sc.deltaBic) + " not credited)";
+        L.scores[c] = t.sc;
         return std::nullopt;
     }
-    return Tried{sc, f, s2};
+    return t;
 }
 
 // (1b) The candidate's gain against what noise alone gives on these runs (noise_null.hpp).
@@ -313,6 +338,14 @@ int selectCandidate(Loop& L, Round& R, std::vector<Tried>& tried, ModelErrors& m
         L.progress(R.label() + ": held-out check of " + sc.name, 1.0);
         std::vector<std::map<std::string, double>> loo;
         ModelErrors e = errorsOf(L.cx, tried[ti].spec, tried[ti].fit, L.fitIdx, L.valIdx, L.res.fits, &loo);
+        // The model about to be judged gets the baseline's convergence guard: it is judged
+        // (and, if added, extended) from its own minimum, not from where a start stopped.
+        std::string note;
+        if (L.opt.heldOutRestart && restartFromHeldOut(L, tried[ti].spec, tried[ti].fit, loo, note)) {
+            scoreFit(L, tried[ti]);
+            sc.startNote += note + ". ";
+            e = errorsOf(L.cx, tried[ti].spec, tried[ti].fit, L.fitIdx, L.valIdx, L.res.fits, &loo);
+        }
         sc.heldOutNrmse = e.validationNrmse;
         if (!passesSelection(L.cx, sc, tried[ti].fit, ref, e, loo, L.valIdx.empty() ? L.fitIdx : L.valIdx,
                              L.curDiag.integratedAcfTime))

@@ -130,8 +130,9 @@ struct IdentifyOptions {
     int multistarts = 2;
     // Baseline restart from held-out refits: a leave-one-run-out refit, warm-started from the
     // full fit, that fits ALL the fit runs better than the full fit did shows the full fit
-    // stopped in a worse minimum; the baseline is then refitted from the best such point and its
-    // errors recomputed (docs/identify-results.md, session 13: measured on all 18 sets).
+    // stopped in a worse minimum; if that point lowers the BIC by more than bicMargin, the
+    // baseline is refitted from it and its errors recomputed. The same guard runs on a candidate
+    // at its held-out check, before it is judged (docs/identify-results.md, sessions 13 and 14).
     bool heldOutRestart = true;
     DynamicsResidual dynamicsResidual = DynamicsResidual::EquationError;  // see above
     int maxSegmentsPerRun = 12;      // Segments: at most this many segments per run (evenly spread)

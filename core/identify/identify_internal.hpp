@@ -168,6 +168,10 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
 void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& opt, Prepared& p);
 
 double bic(double ss, double n, double neffCap, int p);
+// Whether a baseline restart (IdentifyOptions::heldOutRestart) is worth taking: the held-out
+// refit's point lowers the BIC by more than the margin an effect must clear (`bicGain` = BIC of
+// the full fit minus BIC at that point).
+bool restartWorthIt(double bicGain, double bicMargin);
 // Correlation of effect e's size parameter (params[0]) with every other free parameter of the
 // fit that is not e's own, keyed by the parameter's name, or by the effect's name for another
 // effect's size parameter (empty when e's size is not free or the fit has no correlation matrix).

@@ -63,6 +63,8 @@ double bic(double ss, double n, double neffCap, int p) {
     return neff * std::log(std::max(ss, 1e-300) / std::max(n, 1.0)) + p * std::log(neff);
 }
 
+bool restartWorthIt(double bicGain, double bicMargin) { return std::isfinite(bicGain) && bicGain > bicMargin; }
+
 // The held-out and identifiability tests of the selection (tests 2 and 3 of the selection rule,
 // IdentifyOptions in identify.hpp).
 // `units`: the runs whose held-out errors are compared (leave-one-run-out: the fit runs;

@@ -124,6 +124,19 @@ private slots:
         sc.sizeCorrelation["b"] = 1.0;
         QCOMPARE(confoundedWith(sc, {"b"}, 10.0), std::string("b"));
     }
+    // The baseline restart (IdentifyOptions::heldOutRestart) is taken only for a gain on the
+    // evidence scale of an effect: the damper's marginal one (sum of squares 945.60 -> 944.84,
+    // session 13) is not, a D16-like one (NRMSE 0.1336 -> 0.0404) is; no finite gain, no restart.
+    void restartNeedsTheEffectMargin() {
+        const double n = 1e5, cap = 300;
+        const auto gain = [&](double ssFull, double ssPoint) { return bic(ssFull, n, cap, 6) - bic(ssPoint, n, cap, 6); };
+        QVERIFY(std::abs(gain(945.60, 944.84) - cap * std::log(945.60 / 944.84)) < 1e-9);
+        QVERIFY(!restartWorthIt(gain(945.60, 944.84), 10.0));
+        QVERIFY(restartWorthIt(gain(945.60, 944.84), 0.0));
+        QVERIFY(restartWorthIt(gain(n * 0.1336 * 0.1336, n * 0.0404 * 0.0404), 10.0));
+        QVERIFY(!restartWorthIt(gain(1.0, 1.0), 0.0));
+        QVERIFY(!restartWorthIt(std::numeric_limits<double>::quiet_NaN(), 0.0));
+    }
     // The loop's options: every one out of range is named with its value and allowed range, the
     // self-test's included; defaults are usable.
     void optionsNameEveryBadField() {
