@@ -291,6 +291,7 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
         double h = hOf(k);
         const bool last = s.t + h >= tEnd - 1e-9 * h;
         if (last) h = tEnd - s.t;
+        bool atEnd = last;  // the step ends at tEnd (not when it is cut at a switch inside it)
         const bool ok = last ? doubledFresh(s, h, y1, ym, y2) : doubled(kit(k), kit(k + 4), s, h, y1, ym, y2);
         if (!ok) {
             ++rep_.rejected;
@@ -311,6 +312,7 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
             }
             if (tau > 0.0) {
                 h = tau;
+                atEnd = false;
                 if (!doubledFresh(s, h, y1, ym, y2)) { ++rep_.rejected; k = std::min(kMax_, k + 4); continue; }
                 stuckEnd = s.stuck;  // the step ends at the switch, on s's side of it
                 throughout = s.stuck && y1.stuck && ym.stuck && y2.stuck;
@@ -337,7 +339,7 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
         rep_.stuckSteps += next.stuck ? 1 : 0;
         if (obs) obs(s, next);
         s = next;
-        if (last) s.t = tEnd;
+        if (atEnd) s.t = tEnd;
         maxAbsX_ = std::max(maxAbsX_, std::abs(s.x));
         k = nextLevel(k, r, throughout);
     }

@@ -201,6 +201,39 @@ private slots:
                                                                          .arg(got[0][1], 0, 'g', 10).arg(got[1][1], 0, 'g', 10)));
     }
 
+    // A run whose last step holds a switch: the step is cut at the switch, and the run goes on
+    // to tEnd in a further step instead of labelling the switch's state with tEnd (bug found in
+    // session 14: the state at the onset was returned as the state at tEnd). Checked as the
+    // chain of accepted steps: contiguous, ending at tEnd, the stage displacement of the end
+    // state at tEnd's, and slipping.
+    void lastStepWithASwitchReachesTheEnd_data() { switchesLocated_data(); }
+    void lastStepWithASwitchReachesTheEnd() {
+        QFETCH(bool, coulomb);
+        const DynamicsModel m = DynamicsModel::fromParams(lawParams(coulomb, 1));
+        AdaptiveOptions o;
+        o.tolerance = 1e-4;
+        DynState s = m.initialState();
+        double onset = -1;
+        advanceAdaptive(m, s, 0.002, o, [&](const DynState& a, const DynState& b) {
+            if (!b.stuck && onset < 0) onset = a.t;  // a located switch starts the first slipping step
+        });
+        QVERIFY(onset > 0);
+        const double tEnd = onset + 1e-7;
+        s = m.initialState();
+        std::vector<std::pair<double, double>> steps;
+        const AdaptiveReport rep = advanceAdaptive(m, s, tEnd, o, [&](const DynState& a, const DynState& b) {
+            steps.emplace_back(a.t, b.t);
+        });
+        QVERIFY2(rep.status == RunStatus::Ok, rep.message.c_str());
+        QVERIFY(!steps.empty());
+        for (size_t i = 1; i < steps.size(); ++i) QCOMPARE(steps[i].first, steps[i - 1].second);
+        qInfo("onset %.9g s, tEnd %.9g s, last step ends %.9g s", onset, tEnd, steps.back().second);
+        QVERIFY(std::abs(steps.back().second - tEnd) <= 1e-12);
+        QCOMPARE(s.t, tEnd);
+        QVERIFY(std::abs(s.u - m.stage.displacement(tEnd)) <= 1e-12 * std::abs(m.stage.amplitude()));
+        QVERIFY(!s.stuck);  // 0.1 µs after the onset it slips
+    }
+
     // Output on the requested grid (dense output), the once-per-period states at the exact
     // phase t = kT, and the start sample, with transient cycles.
     void outputGridAndPhase() {
