@@ -59,7 +59,6 @@ struct Tried {
     double bicBase = 0;  // the criterion of the model it extends
 };
 
-
 // The loop's state: the current model, its fit, errors and diagnostics, and every score so far.
 struct Loop {
     Loop(Context& c, const IdentifyOptions& o, IdentifyResult& r) : cx(c), opt(o), res(r) {}

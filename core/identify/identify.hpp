@@ -223,7 +223,7 @@ struct IdentifyResult {
     std::string message;
     std::string setup;
     std::vector<ParamEstimate> baseline;  // baseline model parameters ± stderr
-    std::string baselineNote;             // how the baseline was reached when not by its own fit (heldOutRestart)
+    std::string baselineNote;             // what the held-out restart found (heldOutRestart): refitted, or kept and why
     std::vector<ParamEstimate> final;     // final model parameters ± stderr
     ModelErrors before, after;
     std::vector<AddedEffect> effectsAdded;

@@ -205,6 +205,7 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
 ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
                      const std::vector<size_t>& valIdx, long& fits,
                      std::vector<std::map<std::string, double>>* loo) {
+    if (loo) loo->clear();  // this model's refits only (a caller may pass the vector of an earlier fit)
     ModelErrors me;
     double mass = kNaN;
     const ExtendedModel m = buildModel(cx, spec, full.values, mass);

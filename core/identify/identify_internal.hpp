@@ -145,6 +145,7 @@ double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, d
 std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const std::map<std::string, double>& start);
 FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                    const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness = false);
+// `loo`, if given, is replaced by the leave-one-run-out refits' parameter values (one per run).
 ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
                      const std::vector<size_t>& valIdx, long& fits,
                      std::vector<std::map<std::string, double>>* loo = nullptr);
@@ -168,9 +169,9 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
 void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& opt, Prepared& p);
 
 double bic(double ss, double n, double neffCap, int p);
-// Whether a baseline restart (IdentifyOptions::heldOutRestart) is worth taking: the held-out
-// refit's point lowers the BIC by more than the margin an effect must clear (`bicGain` = BIC of
-// the full fit minus BIC at that point).
+// Whether a restart from a held-out refit's point (IdentifyOptions::heldOutRestart; baseline or
+// candidate) is worth taking: that point lowers the BIC by more than the margin an effect must
+// clear (`bicGain` = BIC of the full fit minus BIC at that point).
 bool restartWorthIt(double bicGain, double bicMargin);
 // Correlation of effect e's size parameter (params[0]) with every other free parameter of the
 // fit that is not e's own, keyed by the parameter's name, or by the effect's name for another
