@@ -45,6 +45,11 @@ struct FitParameter {
 
 enum class LossKind { None, Huber, Cauchy };
 
+// How the solver's Jacobian is differenced while it iterates: central (2p displaced points,
+// error O(δ²)) or forward (p points plus the residual the step already has, error O(δ), as
+// MINPACK's lmdif does). The standard errors at the optimum always use central differences.
+enum class JacobianKind { Central, Forward };
+
 // The residual callback receives ALL parameter values (free and fixed) in the order of
 // FitProblem::parameters, in physical units, and fills `residuals` (size residualCount).
 // Return false when the model cannot be evaluated there (simulation failure): the solver
@@ -86,7 +91,8 @@ struct FitProblem {
     int maxIterations = 60;            // per start
     double functionTolerance = 1e-9;   // relative cost change to stop
     double parameterTolerance = 1e-9;  // relative step (internal scale) to stop
-    double relativeStep = 1e-4;        // central-difference step, relative to the internal parameter
+    double relativeStep = 1e-4;        // difference step, relative to the internal parameter
+    JacobianKind jacobian = JacobianKind::Central;  // the solver's Jacobian while it iterates
     // Stop the multistart early once `agreeingStarts` starts (≥ 2) have ended at the same cost
     // within sameCostTolerance (relative) and no start has been lower: further random starts are
     // then unlikely to find another minimum. 0 = always run all `multistarts` starts.

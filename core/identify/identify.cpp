@@ -476,6 +476,7 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
             return res;
         }
         res.decimation = dec;
+        res.jacobian = opt.forwardJacobian ? "forward" : "central";
         res.setup = cx.anyDynamics ? "dynamics" : "prescribed";
     }
     Loop L(cx, opt, res);

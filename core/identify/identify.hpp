@@ -128,6 +128,10 @@ struct IdentifyOptions {
     int substeps = 2;                // law steps per sample (prescribed)
     double stickVelocity_mps = 5e-3; // |V| below this counts as stuck (dynamics channel, diagnostics)
     int multistarts = 2;
+    // The solver's Jacobian while it iterates (fit.hpp, JacobianKind): forward differences by
+    // default, about half the cost of every fit of the loop; central is the slower option, the
+    // one `fit` uses. Standard errors and jackknives are the same either way.
+    bool forwardJacobian = true;
     // Baseline restart from held-out refits: a leave-one-run-out refit, warm-started from the
     // full fit, that fits ALL the fit runs better than the full fit did shows the full fit
     // stopped in a worse minimum; if that point lowers the BIC by more than bicMargin, the
@@ -235,6 +239,7 @@ struct IdentifyResult {
     double wallTime_s = 0;
     long fits = 0;
     int decimation = 1;       // samples used: every decimation-th
+    std::string jacobian = "forward";  // the solvers' Jacobian while iterating (IdentifyOptions::forwardJacobian)
     double slipEpisodes = 0;  // independent units of the BIC (slip episodes in the fit runs)
     double tauInt = 1;        // τ_int of the baseline's residual (samples); n_eff = min(n/τ_int, slipEpisodes)
     double heldOutAlpha = 0.05, identifiabilityAlpha = 0.05;  // the levels used (IdentifyOptions)

@@ -93,6 +93,7 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
     prob.maxIterations = scanStiffness ? 40 : 20;
     prob.functionTolerance = 1e-6;
     prob.parameterTolerance = 1e-6;
+    prob.jacobian = cx.opt->forwardJacobian ? JacobianKind::Forward : JacobianKind::Central;
     const auto names = [&] {
         std::vector<std::string> v;
         for (const auto& p : prob.parameters) v.push_back(p.name);

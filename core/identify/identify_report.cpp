@@ -135,7 +135,7 @@ nlohmann::json toJson(const IdentifyResult& r) {
                       {"null_alpha", num(r.nullAlpha)}, {"null_replicas", r.nullReplicas}, {"bic_margin", num(r.bicMargin)},
                       {"held_out_alpha", num(r.heldOutAlpha)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
                       {"tau_int_samples", num(r.tauInt)},
-                      {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation},
+                      {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation}, {"jacobian", r.jacobian},
                       {"residual", r.residual}, {"segments", r.segmentsUsed}};
     j["wall_time_s"] = r.wallTime_s;
     j["fits"] = r.fits;

@@ -219,6 +219,35 @@ private slots:
         QVERIFY(batches < batched);  // Jacobian points come together
     }
 
+    // JacobianKind::Forward: the same optimum and the same standard errors as central
+    // differences (those are differenced centrally at the optimum either way), from about half
+    // the residual vectors, on a problem whose Jacobian matters (start far from the optimum).
+    void forwardJacobianReachesTheCentralOptimumForLess() {
+        std::mt19937_64 rng(11);
+        std::normal_distribution<double> noise(0.0, 0.01);
+        std::vector<double> t, y;
+        for (int i = 0; i < 300; ++i) {
+            t.push_back(i * 0.01);
+            y.push_back(2.0 * std::exp(-3.0 * t.back()) + noise(rng));
+        }
+        FitProblem central = exponentialDecayFit(t, y);
+        central.parameters[0].value = 7.0;
+        central.parameters[1].value = 0.05;
+        central.multistarts = 1;
+        FitProblem forward = central;
+        forward.jacobian = JacobianKind::Forward;
+        const FitResult c = fitLeastSquares(central), f = fitLeastSquares(forward);
+        QVERIFY2(c.ok() && f.ok(), (c.message + " / " + f.message).c_str());
+        QVERIFY2(std::abs(f.cost - c.cost) <= 1e-6 * c.cost, qPrintable(QString("cost %1 vs %2").arg(f.cost).arg(c.cost)));
+        for (const char* k : {"a", "b"}) {
+            QVERIFY2(std::abs(f.value(k) - c.value(k)) < 0.01 * c.stderrOf(k),
+                     qPrintable(QString("%1: %2 vs %3 (s.e. %4)").arg(k).arg(f.value(k)).arg(c.value(k)).arg(c.stderrOf(k))));
+            QVERIFY(std::abs(f.stderrOf(k) / c.stderrOf(k) - 1.0) < 1e-3);
+        }
+        qInfo("residual vectors: central %ld, forward %ld", c.residualEvaluations, f.residualEvaluations);
+        QVERIFY(f.residualEvaluations < 0.75 * c.residualEvaluations);
+    }
+
     // agreeingStarts: stop once that many starts ended at the same (best) cost.
     void multistartStopsWhenStartsAgree() {
         std::vector<double> t, y;
