@@ -340,8 +340,10 @@ int selectCandidate(Loop& L, Round& R, std::vector<Tried>& tried, ModelErrors& m
         // The model about to be judged gets the baseline's convergence guard: it is judged
         // (and, if added, extended) from its own minimum, not from where a start stopped.
         std::string note;
+        const double ssFirst = tried[ti].fit.ss;
         if (L.opt.heldOutRestart && restartFromHeldOut(L, tried[ti].spec, tried[ti].fit, loo, note)) {
             scoreFit(L, tried[ti]);
+            creditRestartGain(sc, ssFirst, tried[ti].fit.ss);
             sc.startNote += note + ". ";
             e = errorsOf(L.cx, tried[ti].spec, tried[ti].fit, L.fitIdx, L.valIdx, L.res.fits, &loo);
         }

@@ -66,7 +66,7 @@ std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const 
 }
 
 FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
-                   const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness) {
+                   const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from) {
     FitOutcome out;
     FitProblem prob;
     prob.parameters = parameters(cx, spec, start);
@@ -93,7 +93,7 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
     prob.maxIterations = scanStiffness ? 40 : 20;
     prob.functionTolerance = 1e-6;
     prob.parameterTolerance = 1e-6;
-    prob.jacobian = cx.opt->forwardJacobian ? JacobianKind::Forward : JacobianKind::Central;
+    prob.jacobian = cx.opt->forwardJacobian && from == FitStart::Far ? JacobianKind::Forward : JacobianKind::Central;
     const auto names = [&] {
         std::vector<std::string> v;
         for (const auto& p : prob.parameters) v.push_back(p.name);
@@ -240,7 +240,7 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
             if (cx.opt->cancel && cx.opt->cancel->load()) break;
             std::vector<size_t> rest;
             for (size_t i : fitIdx) if (i != h) rest.push_back(i);
-            const FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, fits);
+            const FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, fits, false, FitStart::NearOptimum);
             if (!f.ok) continue;
             if (loo) loo->push_back(f.values);
             double mh = kNaN;

@@ -143,8 +143,15 @@ Eigen::MatrixXd residualJacobian(const Context& cx, const Spec& spec, const std:
 double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx);
 
 std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const std::map<std::string, double>& start);
+// Which finite-difference Jacobian a fit's solver uses (IdentifyOptions::forwardJacobian).
+// NearOptimum: a refit started at the optimum of the full problem (leave-one-run-out) takes
+// central differences whatever the option: its gradient is small there, of the order of a
+// forward difference's O(δ) error, which would stop it where it started (measured: every
+// refit of a backlash fit, jackknife spread 0).
+enum class FitStart { Far, NearOptimum };
 FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
-                   const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness = false);
+                   const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness = false,
+                   FitStart from = FitStart::Far);
 // `loo`, if given, is replaced by the leave-one-run-out refits' parameter values (one per run).
 ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
                      const std::vector<size_t>& valIdx, long& fits,
@@ -173,6 +180,10 @@ double bic(double ss, double n, double neffCap, int p);
 // candidate) is worth taking: that point lowers the BIC by more than the margin an effect must
 // clear (`bicGain` = BIC of the full fit minus BIC at that point).
 bool restartWorthIt(double bicGain, double bicMargin);
+// A candidate refitted from a held-out refit's point keeps the noise-null verdict of its first
+// fit (the refit only lowers its sum of squares further); the gain it reports is the refit's:
+// the first gain plus what the refit lowered the sum of squares by (only when the null ran).
+void creditRestartGain(CandidateScore& sc, double ssFirst, double ssRefit);
 // Correlation of effect e's size parameter (params[0]) with every other free parameter of the
 // fit that is not e's own, keyed by the parameter's name, or by the effect's name for another
 // effect's size parameter (empty when e's size is not free or the fit has no correlation matrix).

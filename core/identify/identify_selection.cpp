@@ -65,6 +65,10 @@ double bic(double ss, double n, double neffCap, int p) {
 
 bool restartWorthIt(double bicGain, double bicMargin) { return std::isfinite(bicGain) && bicGain > bicMargin; }
 
+void creditRestartGain(CandidateScore& sc, double ssFirst, double ssRefit) {
+    if (sc.nullReplicas > 0 && std::isfinite(ssFirst) && std::isfinite(ssRefit)) sc.gain += ssFirst - ssRefit;
+}
+
 // The held-out and identifiability tests of the selection (tests 2 and 3 of the selection rule,
 // IdentifyOptions in identify.hpp).
 // `units`: the runs whose held-out errors are compared (leave-one-run-out: the fit runs;

@@ -18,7 +18,10 @@ inline void verifyAcceptedPassedSelection(const stickslip::identify::IdentifyRes
         if (!c.accepted) continue;
         QCOMPARE(c.heldOutUnits, heldOutRuns);
         QVERIFY2(c.heldOutP >= 0 && c.heldOutP < 0.05, qPrintable(QString("paired p %1").arg(c.heldOutP)));
-        QVERIFY(c.sizeStderr > 0 && std::abs(c.sizeCritical - tCritical) < 1e-4);
+        QVERIFY2(c.sizeStderr > 0 && std::abs(c.sizeCritical - tCritical) < 1e-4,
+                 qPrintable(QString("%1: size %2 jackknife s.e. %3, critical t %4 (expected %5)")
+                                .arg(QString::fromStdString(c.name)).arg(c.sizeValue).arg(c.sizeStderr).arg(c.sizeCritical)
+                                .arg(tCritical)));
         QVERIFY(std::abs(c.sizeValue - c.sizeNull) > c.sizeCritical * c.sizeStderr);
         qInfo("%s: paired t %.2f p %.2g, size %.4g jackknife s.e. %.3g", c.name.c_str(), c.heldOutT, c.heldOutP,
               c.sizeValue, c.sizeStderr);

@@ -137,6 +137,20 @@ private slots:
         QVERIFY(!restartWorthIt(gain(1.0, 1.0), 0.0));
         QVERIFY(!restartWorthIt(std::numeric_limits<double>::quiet_NaN(), 0.0));
     }
+    // After a candidate's restart the reported gain against the noise null is the refit's.
+    void restartCreditsTheRefitsGain() {
+        CandidateScore sc;
+        sc.gain = 5.0;
+        sc.nullReplicas = 200;
+        creditRestartGain(sc, 100.0, 98.0);
+        QCOMPARE(sc.gain, 7.0);
+        creditRestartGain(sc, 98.0, std::numeric_limits<double>::quiet_NaN());
+        QCOMPARE(sc.gain, 7.0);
+        CandidateScore noNull;  // the null did not run: no gain to credit
+        noNull.gain = 0.0;
+        creditRestartGain(noNull, 100.0, 98.0);
+        QCOMPARE(noNull.gain, 0.0);
+    }
     // The loop's options: every one out of range is named with its value and allowed range, the
     // self-test's included; defaults are usable.
     void optionsNameEveryBadField() {

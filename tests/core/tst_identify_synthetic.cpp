@@ -91,9 +91,8 @@ IdentifyResult identifySet(const std::string& set, const IdentifyOptions& opt = 
 // key's law, mass and damping (only ζ refitted, from the key's value), no effect. What any fit can
 // reach on these runs, whatever the noise does to the residual (on compliant contacts the
 // measured slip's noise enters the law channel through ε_T, so the floor is not the force noise).
-ModelErrors truthErrors(const std::string& set) {
+ModelErrors truthErrors(const std::string& set, std::vector<IdentifyRun> runs) {
     const nlohmann::json bp = answer(set).at("baseline_params");
-    std::vector<IdentifyRun> runs = loadRuns(set, 5, INFINITY);
     for (IdentifyRun& r : runs) r.nominalMass_kg = bp.at("m").get<double>();
     IdentifyOptions o;
     o.start.mu = bp.at("mu");
@@ -136,7 +135,8 @@ private slots:
         QFETCH(QString, set);
         const std::string name = set.toStdString();
         const std::set<std::string> truth = answerEffects(name);
-        const IdentifyResult r = identifySet(name);
+        const std::vector<IdentifyRun> runs = loadRuns(name, 5, INFINITY);
+        const IdentifyResult r = identifyEffects(runs, IdentifyOptions{});
         QVERIFY2(r.ok, r.message.c_str());
         for (const CandidateScore& c : r.candidates)
             qInfo("%s round %d dBIC %.2f held-out p %.3g size %.4g +- %.3g (crit %.2f): %s", c.name.c_str(), c.round, c.deltaBic,
@@ -154,7 +154,7 @@ private slots:
         // in session 14: D05 0.0239 / 0.0242, D10 0.0557 / 0.0548, D14 0.0347 / 0.0353, D16
         // 0.0432 / 0.0423, fitted / key).
         if (truth.empty()) {
-            const ModelErrors key = truthErrors(name);
+            const ModelErrors key = truthErrors(name, runs);
             qInfo("%s: held-out NRMSE of the fitted baseline %.4f, of the answer key's model %.4f (ratio %.3f)", name.c_str(),
                   r.before.validationNrmse, key.validationNrmse, r.before.validationNrmse / key.validationNrmse);
             QVERIFY2(r.before.validationNrmse <= 1.05 * key.validationNrmse, "baseline held-out error above the key's floor");
