@@ -121,7 +121,7 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--multistarts", o->req.options.multistarts, "starting points per fit")->capture_default_str();
     cmd->add_flag("--forward-jacobian,!--central-jacobian", o->req.options.forwardJacobian,
                   "the solver's Jacobian by forward differences (default: p residual runs per Jacobian) or by central "
-                  "differences (2p, slower); standard errors use central differences either way")->capture_default_str();
+                  "differences (2p, slower); standard errors and leave-one-run-out refits use central differences either way")->capture_default_str();
     cmd->add_flag("--held-out-restart,!--no-held-out-restart", o->req.options.heldOutRestart,
                   "refit the baseline, and a candidate before it is judged, from a leave-one-run-out refit's point "
                   "when that point fits all runs better than the full fit by more than --bic-margin in BIC (the full "

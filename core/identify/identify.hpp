@@ -130,7 +130,8 @@ struct IdentifyOptions {
     int multistarts = 2;
     // The solver's Jacobian while it iterates (fit.hpp, JacobianKind): forward differences by
     // default, about half the cost of every fit of the loop; central is the slower option, the
-    // one `fit` uses. Standard errors and jackknives are the same either way.
+    // one `fit` uses. Either way the standard errors are differenced centrally at the optimum
+    // and the leave-one-run-out refits (held-out errors, jackknife) iterate with central ones.
     bool forwardJacobian = true;
     // Baseline restart from held-out refits: a leave-one-run-out refit, warm-started from the
     // full fit, that fits ALL the fit runs better than the full fit did shows the full fit

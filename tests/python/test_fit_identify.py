@@ -26,6 +26,19 @@ def test_identify_equals_cli_report(cli, damper, tmp_path):
     want = load_json(tmp_path / "id.json")
     assert got["ok"] is True
     assert strip_keys(got) == strip_keys(want)
+    assert got["selection"]["jacobian"] == "forward"
+
+
+def test_identify_central_jacobian_equals_cli_report(cli, damper, tmp_path):
+    data = [str(damper / n) for n in ("1Hz_30lb_1in.csv", "1Hz_36lb_1in.csv", "0.5Hz_30lb_1in.csv")]
+    got = stickslip.identify(data, setup="prescribed", candidates=["normal_load_mu"], max_effects=1, null_replicas=20,
+                             multistarts=1, forward_jacobian=False)
+    run_cli(cli, "identify", "--data", *data, "--setup", "prescribed", "--candidates", "normal_load_mu",
+            "--max-effects", "1", "--null-replicas", "20", "--multistarts", "1", "--central-jacobian", "--quiet",
+            "--report", tmp_path / "id.json")
+    want = load_json(tmp_path / "id.json")
+    assert got["ok"] is True and got["selection"]["jacobian"] == "central"
+    assert strip_keys(got) == strip_keys(want)
 
 
 def test_fit_identify_bad_arguments(damper):
