@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "trbdf2.hpp"
+
 namespace stickslip {
 
 ParamIssues AdaptiveOptions::validate() const {
@@ -63,6 +65,10 @@ constexpr double kPerPeriod = 1.0;
 // 1e-2 … 1e-5): a third of the stuck steps, error/TOL still 0.5–1.8 (rate-state to 1e-4) and
 // 0.7–1.8 (Coulomb); 100× overshoots TOL up to 17×.
 constexpr double kStuckAllowance = 10.0;
+// With TR-BDF2 the kept value is third order in slip as well, the estimate that of the
+// second-order y₂: slip steps may use kTrSlipAllowance× the allowance. Calibrated (tst_adaptive's
+// four sets, TOL 1e-2 … 1e-5; see docs/adaptive.md).
+constexpr double kTrSlipAllowance = 3.0;
 
 // Velocity weight of the extrapolation in viscoplastic slip (rate-state law). The overstress
 // relaxes in τ_r = η t_N/ε_T (4 µs at the paper's ε_T = 1e6), so for h ≫ τ_r backward Euler
@@ -75,15 +81,21 @@ constexpr double kStuckAllowance = 10.0;
 // set, same step counts; Coulomb has no viscous term and keeps 1.
 constexpr double kViscousVelocityWeight = 3.0;
 
+// Constants of one step size: the Newmark step's, or (tr) the TR-BDF2 stages' with the law
+// prepared for their stage length d = γh/2.
 template <class Law>
 struct Kit {
     using Prep = decltype(std::declval<const Law&>().prepare(0.0, 0.0, 0.0));
     detail::NewmarkConstants K;
+    detail::TrBdf2Constants T;
     Prep prep;
     double cosWh = 1, sinWh = 0;  // rotation of the harmonic stage's phase over h
-    Kit(const RigParams& rig, const Law& law, double h, double omega)
-        : K(rig, law.epsT(), h), prep(law.prepare(K.returnStiffness, h, K.tN)), cosWh(std::cos(omega * h)),
-          sinWh(std::sin(omega * h)) {}
+    double cosWg = 1, sinWg = 0;  // ... over γh (the TR-BDF2 stage)
+    Kit(const RigParams& rig, const Law& law, double h, double omega, bool tr)
+        : K(rig, law.epsT(), h), T(rig, law.epsT(), h),
+          prep(tr ? law.prepare(T.returnStiffness, T.d, T.tN) : law.prepare(K.returnStiffness, h, K.tN)),
+          cosWh(std::cos(omega * h)), sinWh(std::sin(omega * h)), cosWg(std::cos(omega * detail::kTrGamma * h)),
+          sinWg(std::sin(omega * detail::kTrGamma * h)) {}
 };
 
 template <class Law>
@@ -104,6 +116,7 @@ public:
         for (int k = 0; k < kLevels; ++k) hTable_[static_cast<size_t>(k)] = hMax_ * std::exp2(-0.25 * k);
         harmonic_ = m.stage.isHarmonic();
         if constexpr (requires { Law::kViscous; }) viscous_ = Law::kViscous;
+        if constexpr (HasFlowRates<Law>) tr_ = o.trBdf2;
         omega_ = harmonic_ ? m.stage.omega() : 0.0;
     }
     AdaptiveReport run(DynState& s, double tEnd, const AdaptiveObserver& obs, const RunControl& ctl);
@@ -111,16 +124,24 @@ public:
 private:
     double hOf(int k) const { return hTable_[static_cast<size_t>(k)]; }
     Kit<Law>& kit(int k) {
-        if (!cache_[static_cast<size_t>(k)]) cache_[static_cast<size_t>(k)].emplace(m_.rig, law_, hOf(k), omega_);
+        if (!cache_[static_cast<size_t>(k)]) cache_[static_cast<size_t>(k)].emplace(m_.rig, law_, hOf(k), omega_, tr_);
         return *cache_[static_cast<size_t>(k)];
     }
-    // One base step (Newmark + condensed return map) of y to tNew, stage at u1, with the kit's step.
-    bool base(Kit<Law>& kt, DynState& y, double tNew, double u1) {
+    // One base step of y to tNew, stage at u1, with the kit's step: TR-BDF2 (tr_) or Newmark with
+    // the condensed return map. uGamma: the stage at y.t + γh (NaN: computed here).
+    bool base(Kit<Law>& kt, DynState& y, double tNew, double u1, double uGamma = NAN) {
         int nIts = 0, lIts = 0;
         const char* why = nullptr;
         double bad = 0;
         ++rep_.baseSteps;
-        const bool ok = detail::newmarkStep(kt.K, law_, &kt.prep, u1, y, Coupling::Condensed, nIts, lIts, why, bad);
+        bool ok = false;
+        if constexpr (HasFlowRates<Law>) {
+            if (tr_) {
+                if (std::isnan(uGamma)) uGamma = m_.stage.displacement(y.t + detail::kTrGamma * kt.T.h);
+                ok = detail::trBdf2Step(kt.T, law_, kt.prep, uGamma, u1, y, lIts, why, bad);
+            }
+        }
+        if (!tr_) ok = detail::newmarkStep(kt.K, law_, &kt.prep, u1, y, Coupling::Condensed, nIts, lIts, why, bad);
         rep_.lawIterations += lIts;
         if (ok) y.t = tNew;
         return ok;
@@ -130,32 +151,39 @@ private:
     // is advanced from one sincos at s.t by the kits' rotations (angle addition, exact to round-off)
     // instead of a sine per base step (13 % of the run time, measured with perf).
     bool doubled(Kit<Law>& full, Kit<Law>& half, const DynState& s, double h, DynState& y1, DynState& ym, DynState& y2) {
-        double uHalf, uFull;
+        double uHalf, uFull, gFull = NAN, gHalf1 = NAN, gHalf2 = NAN;
         if (harmonic_) {
             const double th = omega_ * s.t + m_.stage.phase(), S = std::sin(th), C = std::cos(th), A = m_.stage.amplitude();
             uHalf = A * (S * half.cosWh + C * half.sinWh);
             uFull = A * (S * full.cosWh + C * full.sinWh);
+            if (tr_) {  // the stages at s.t + γh, s.t + γh/2 and s.t + h/2 + γh/2
+                gFull = A * (S * full.cosWg + C * full.sinWg);
+                gHalf1 = A * (S * half.cosWg + C * half.sinWg);
+                const double Sh = S * half.cosWh + C * half.sinWh, Ch = C * half.cosWh - S * half.sinWh;
+                gHalf2 = A * (Sh * half.cosWg + Ch * half.sinWg);
+            }
         } else {
             uHalf = m_.stage.displacement(s.t + 0.5 * h);
             uFull = m_.stage.displacement(s.t + h);
         }
         y1 = s;
         ym = s;
-        if (!base(full, y1, s.t + h, uFull) || !base(half, ym, s.t + 0.5 * h, uHalf)) return false;
+        if (!base(full, y1, s.t + h, uFull, gFull) || !base(half, ym, s.t + 0.5 * h, uHalf, gHalf1)) return false;
         y2 = ym;
-        return base(half, y2, s.t + h, uFull);
+        return base(half, y2, s.t + h, uFull, gHalf2);
     }
     bool doubledFresh(const DynState& s, double h, DynState& y1, DynState& ym, DynState& y2) {
-        Kit<Law> full(m_.rig, law_, h, omega_), half(m_.rig, law_, 0.5 * h, omega_);
+        Kit<Law> full(m_.rig, law_, h, omega_, tr_), half(m_.rig, law_, 0.5 * h, omega_, tr_);
         return doubled(full, half, s, h, y1, ym, y2);
     }
     // Local Richardson extrapolation (header comment): weight 1/3 when stuck throughout (the
-    // trapezoidal rule's even expansion), 1 otherwise (backward Euler's h term in the law).
+    // trapezoidal rule's even expansion) or with TR-BDF2 (second order in slip too), 1 otherwise
+    // (backward Euler's h term in the law).
     DynState combine(const DynState& y1, const DynState& y2, bool stuckThroughout, bool stuck) const {
-        const double w = stuckThroughout ? 1.0 / 3.0 : 1.0;
+        const double w = stuckThroughout || tr_ ? 1.0 / 3.0 : 1.0;
         DynState y = y2;
         y.x += w * (y2.x - y1.x);
-        y.v += (stuckThroughout || !viscous_ ? w : kViscousVelocityWeight) * (y2.v - y1.v);
+        y.v += (stuckThroughout || tr_ || !viscous_ ? w : kViscousVelocityWeight) * (y2.v - y1.v);
         y.law.force_N += w * (y2.law.force_N - y1.law.force_N);
         y.law.alpha += w * (y2.law.alpha - y1.law.alpha);
         // Equilibrium at the end of the step (Eq. 8), as the Newmark step itself enforces it.
@@ -170,20 +198,21 @@ private:
         // at the paper's set, far below any useful step) and the runs 10–1000× slower.
         const double est = std::max(std::abs(y2.x - y1.x), h * std::abs(y2.v - y1.v));
         const double allowed =
-            o_.tolerance * std::max(scale_, maxAbsX_) * kPerPeriod * (stuckThroughout ? kStuckAllowance : 1.0) * h / period_;
+            o_.tolerance * std::max(scale_, maxAbsX_) * kPerPeriod *
+            (stuckThroughout ? kStuckAllowance : (tr_ ? kTrSlipAllowance : 1.0)) * h / period_;
         return est / allowed;
     }
     double trialSlip(const DynState& s, double tau) const;
     double locate(const DynState& s, double h, const DynState& y1);
     bool keepsSlipping(const DynState& s, double tau) {
-        Kit<Law> kt(m_.rig, law_, tau, omega_);
+        Kit<Law> kt(m_.rig, law_, tau, omega_, tr_);
         DynState y = s;
         return base(kt, y, s.t + tau) && !y.stuck;
     }
     // First root of sign(F) V(t) on the dense output of the slipping step of length tau from s
     // (tau itself if V keeps its sign).
     double velocityReversal(const DynState& s, double tau) {
-        Kit<Law> kt(m_.rig, law_, tau, omega_);
+        Kit<Law> kt(m_.rig, law_, tau, omega_, tr_);
         DynState y = s;
         if (!base(kt, y, s.t + tau)) return tau;
         const double sgn = s.law.force_N >= 0.0 ? 1.0 : -1.0;
@@ -210,7 +239,7 @@ private:
     const Law& law_;
     const AdaptiveOptions& o_;
     double period_ = 1, hMax_ = 0, hMin_ = 0, scale_ = 0, maxAbsX_ = 0, omega_ = 0;
-    bool harmonic_ = false, viscous_ = false;
+    bool harmonic_ = false, viscous_ = false, tr_ = false;
     std::array<double, kLevels> hTable_{};
     int kMax_ = 0;
     std::vector<std::optional<Kit<Law>>> cache_;
@@ -221,6 +250,13 @@ private:
 // newmarkStep's predictor, so Φ_trial(τ) ≤ 0 exactly when that step sticks.
 template <class Law>
 double Adaptive<Law>::trialSlip(const DynState& s, double tau) const {
+    if (tr_) {
+        const detail::TrBdf2Constants T(m_.rig, law_.epsT(), tau);
+        LawState end = s.law;
+        end.force_N = detail::trElasticEndForce(T, s, m_.stage.displacement(s.t + detail::kTrGamma * tau),
+                                                m_.stage.displacement(s.t + tau));
+        return law_.slipFunction(end, T.tN);
+    }
     const detail::NewmarkConstants K(m_.rig, law_.epsT(), tau);
     const double du = m_.stage.displacement(s.t + tau) - s.u;
     const double b = K.m * (K.i4h2 * (s.x + tau * s.v) + s.a) + K.c * (K.i2h * s.x + s.v);
@@ -271,7 +307,8 @@ double Adaptive<Law>::locate(const DynState& s, double h, const DynState& y1) {
 
 template <class Law>
 AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserver& obs, const RunControl& ctl) {
-    int k = std::min(kMax_, 24);  // start at h_max/64: the first steps resolve the start from rest
+    const int kStart = std::min(kMax_, 24);  // h_max/64: the first steps resolve the start from rest
+    int k = kStart;
     int relabels = 0;
     DynState y1, ym, y2;
     auto fail = [&](const char* what) {
@@ -292,6 +329,7 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
         const bool last = s.t + h >= tEnd - 1e-9 * h;
         if (last) h = tEnd - s.t;
         bool atEnd = last;  // the step ends at tEnd (not when it is cut at a switch inside it)
+        bool toOnset = false;  // the step ends at a located stick → slip switch
         const bool ok = last ? doubledFresh(s, h, y1, ym, y2) : doubled(kit(k), kit(k + 4), s, h, y1, ym, y2);
         if (!ok) {
             ++rep_.rejected;
@@ -304,6 +342,7 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
         if (!same && o_.locateSwitches && relabels < 2) {
             const double tau = locate(s, h, y1);
             if (tau == 0.0) {  // the switch is at s: continue in the other regime
+                if (s.stuck && tr_) k = std::max(k, kStart);
                 s.stuck = !s.stuck;
                 if (!s.stuck) s.slipRate = 0.0;
                 ++rep_.switches;
@@ -315,6 +354,7 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
                 atEnd = false;
                 if (!doubledFresh(s, h, y1, ym, y2)) { ++rep_.rejected; k = std::min(kMax_, k + 4); continue; }
                 stuckEnd = s.stuck;  // the step ends at the switch, on s's side of it
+                toOnset = s.stuck;
                 throughout = s.stuck && y1.stuck && ym.stuck && y2.stuck;
             } else if (k < kMax_) {
                 ++rep_.rejected;  // no bracket in [0, h]: shrink and try again
@@ -342,6 +382,11 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
         if (atEnd) s.t = tEnd;
         maxAbsX_ = std::max(maxAbsX_, std::abs(s.x));
         k = nextLevel(k, r, throughout);
+        // A slip onset starts the law's transients (the overstress in η t_N/ε_T, α over D_c/|V|):
+        // the steps after it grow again from h_max/64, as after the start from rest, instead of
+        // one step of the size reached in stick spanning them (seen with TR-BDF2: that first slip
+        // step set a floor on the error at h_max ≥ T/2000 on the Fig. 20 set).
+        if (toOnset && tr_) k = std::max(k, kStart);
     }
     return rep_;
 }

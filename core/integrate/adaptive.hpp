@@ -40,6 +40,10 @@ struct AdaptiveOptions {
     double displacementScale_m = 0;  // floor of the error scale [m]; 0: 5 % of the stage amplitude
     long maxSteps = 50'000'000;      // accepted + rejected steps of one call: more fails the run
     bool locateSwitches = true;      // cut steps at stick–slip switches (off: error control only)
+    // Laws with a rate-form flow rule (the rate-state law) step by TR-BDF2 (trbdf2.hpp), second
+    // order in stick and slip; false: the paper's Newmark + backward-Euler step, extrapolated
+    // (order 1.31 in rate-state slip; kept for comparison).
+    bool trBdf2 = true;
     ParamIssues validate() const;
 };
 

@@ -35,6 +35,19 @@ std::vector<double> referenceTrace(SimParams p) {
     return x;
 }
 
+// For the rate-state law the fixed step is first order (its error at T/400 000 is ~1e-5, the
+// size of the errors TR-BDF2 reaches at T/4000), so its reference is extrapolated:
+// 2 x(T/800 000) − x(T/400 000) removes the h term (floor ~1e-6 relative, measured against
+// TR-BDF2 itself at T/8000).
+std::vector<double> extrapolatedReference(SimParams p) {
+    const std::vector<double> coarse = referenceTrace(p);
+    p.integration.dt_s = p.drive.period() / 800000.0;
+    const RunResult r = simulateDynamics(p);
+    std::vector<double> x;
+    for (size_t i = 0; i < r.samples.size() && i < coarse.size(); ++i) x.push_back(2.0 * r.samples[i].slider_m - coarse[i]);
+    return x;
+}
+
 // max |x − x_ref| / max |x_ref| over the samples; NaN when the run failed or the grids differ.
 double relativeError(const RunResult& r, const std::vector<double>& ref) {
     if (!r.ok() || r.samples.size() != ref.size()) return NAN;
@@ -77,28 +90,33 @@ class TstAdaptive : public QObject {
     Q_OBJECT
 private slots:
     // Order under refinement of the extrapolated step itself: the step size held at h_max
-    // (tolerance 0.5 never rejects) for h_max = T/1000 … T/8000 over 5 cycles. Coulomb: the
-    // law is exact in closed form, Newmark + extrapolation is second order and the switches are
-    // located, so the slope is ≥ 1.8 (seen 2.05). Rate-state: the extrapolation (with the
-    // viscous velocity weight, adaptive.cpp) leaves an order reduction where h approaches the
-    // overstress relaxation time η t_N/ε_T ≈ 4 µs; the measured slope is 1.31 (0.90 with plain
-    // 2y₂ − y₁). The issue's ≥ 2 is NOT reached for this law yet; we assert what holds (≥ 1.1)
-    // and that the error falls monotonically, and report the numbers.
+    // (tolerance 0.5 never rejects; after a slip onset the steps grow back from h_max/64) over
+    // 5 cycles. Coulomb (Newmark + extrapolation, the law exact in closed form, switches
+    // located): h_max = T/1000 … T/8000 against the fixed step at T/400 000, slope ≥ 1.8 (seen
+    // 2.05). Rate-state by TR-BDF2 (trbdf2.hpp) + extrapolation: T/1000 … T/4000 against the
+    // extrapolated reference (beyond, its floor of ~1e-6), slope ≥ 2 (seen 3.1: the kept value
+    // (4y₂ − y₁)/3 of a second-order step). Rate-state by the paper's step (trBdf2 off), for
+    // comparison: order reduction where h approaches η t_N/ε_T ≈ 4 µs, slope ≥ 1.1 (seen 1.3).
     void observedOrder_data() {
         QTest::addColumn<bool>("coulomb");
+        QTest::addColumn<bool>("trBdf2");
         QTest::addColumn<double>("minOrder");
-        QTest::addRow("coulomb") << true << 1.8;
-        QTest::addRow("rate-state") << false << 1.1;
+        QTest::addRow("coulomb") << true << true << 1.8;
+        QTest::addRow("rate-state, TR-BDF2") << false << true << 2.0;
+        QTest::addRow("rate-state, Newmark + backward Euler") << false << false << 1.1;
     }
     void observedOrder() {
         QFETCH(bool, coulomb);
+        QFETCH(bool, trBdf2);
         QFETCH(double, minOrder);
         const SimParams p = lawParams(coulomb, 5);
-        const std::vector<double> ref = referenceTrace(p);
+        const std::vector<double> ref = coulomb ? referenceTrace(p) : extrapolatedReference(p);
         std::vector<double> ns = {1000, 2000, 4000, 8000}, err;
+        if (!coulomb && trBdf2) ns.pop_back();
         for (double n : ns) {
             AdaptiveOptions o;
             o.tolerance = 0.5;  // the largest allowed: never rejects here
+            o.trBdf2 = trBdf2;
             o.maxStep_s = p.drive.period() / n;
             const RunResult r = simulateAdaptive(p, o);
             QVERIFY2(r.ok(), r.message.c_str());
@@ -113,11 +131,12 @@ private slots:
 
     // Error against tolerance over 20 cycles (the measure, A = 1 mm, ε_T = 1e6 and the
     // paper's second set A = 0.4 mm, ε_T = 1.1e4): monotone in the tolerance and within 2× of
-    // it from above (error ≤ 2 TOL); from below only ≥ TOL/20 (seen down to 0.08 TOL: Coulomb
-    // 0.4 mm at TOL 1e-2, where a few steps already resolve the motion).
+    // it from above (error ≤ 2 TOL); from below only ≥ TOL/50. Rate-state runs are measured
+    // against the extrapolated reference (the plain T/400 000 one is itself ~1e-5 off).
     // Seen (TOL 1e-2 … 1e-5): Coulomb 1 mm 1.01 1.28 0.74 0.74; Coulomb 0.4 mm 0.12 0.25 0.34
-    // 0.41; rate-state 1 mm 1.33 1.01 1.52 1.93 (0.18 … 5.5 before the viscous velocity weight);
-    // rate-state 0.4 mm 0.89 1.16 1.03 1.18.
+    // 0.41; rate-state (TR-BDF2) 1 mm 1.75 0.57 0.69 1.13; rate-state 0.4 mm 0.27 0.10 0.04
+    // 0.18: on the compliant set TR-BDF2's local control is 10–25× tighter than
+    // asked (the global error there grows less than the sum of local ones).
     void errorFollowsTolerance_data() {
         QTest::addColumn<bool>("coulomb");
         QTest::addColumn<double>("amplitude");
@@ -136,7 +155,7 @@ private slots:
         SimParams p = lawParams(coulomb, 20);
         p.drive.amplitude_m = amplitude;
         p.lawParams<RateStateParams>().epsT_N_per_m = p.lawParams<CoulombParams>().epsT_N_per_m = epsT;
-        const std::vector<double> ref = referenceTrace(p);
+        const std::vector<double> ref = coulomb ? referenceTrace(p) : extrapolatedReference(p);
         double prev = INFINITY;
         for (double tol : {1e-2, 1e-3, 1e-4, 1e-5}) {
             if (tol < smallestTol) break;
@@ -148,7 +167,7 @@ private slots:
             qInfo("tol %.0e: %ld steps (%ld base steps), error %.3e = %.2f tol", tol, r.stats.steps,
                   r.stats.newtonIterations, e, e / tol);
             QVERIFY2(e <= 2 * tol, qPrintable(QString("error %1 at tolerance %2").arg(e).arg(tol)));
-            QVERIFY2(e >= 0.05 * tol, qPrintable(QString("error %1 at tolerance %2").arg(e).arg(tol)));
+            QVERIFY2(e >= 0.02 * tol, qPrintable(QString("error %1 at tolerance %2").arg(e).arg(tol)));
             QVERIFY(e < prev);
             prev = e;
         }
@@ -303,8 +322,14 @@ private slots:
     // steps (switches are step ends, so F is smooth inside every step):
     //   mechanical: ∫F ẋ dt = Δ(½ m ẋ² + ½ k x²) + ∫c ẋ² dt   (Eq. 8 times ẋ), to 1e-4 of the stage
     //               work ∫F u̇ dt (the quadrature and the run's errors are O(h²); seen ≤ 3.4e-5);
-    //   contact:    ∫F ġ dt − Δ(F²/2ε_T) is the slip dissipation (Eq. 4 times F): > 0 overall, and
-    //               over the stuck steps (no slip) below 1e-4 of it (seen ≤ 5.6e-5).
+    //   contact:    ∫F ġ dt − Δ(F²/2ε_T) is the slip dissipation (Eq. 4 times F): > 0 overall;
+    //   stuck steps: no plastic slip p = g − F/ε_T at all (Eq. 4 with λ̇ = 0), so Σ F̄ Δp over
+    //               them is ≤ 1e-6 of the slip dissipation (seen 2e-8 … 5e-8 on the four sets,
+    //               both schemes: slips far below the tolerance in steps labelled stuck, e.g.
+    //               a half step that slips where the located full step does not). The trapezoidal ∫F ġ dt
+    //               − Δ(F²/2ε_T) over the same steps, used before, measured the quadrature's O(h³)
+    //               error, not slip (seen 5.6e-5 of it with Newmark, 1.1e-4 with TR-BDF2's longer
+    //               stuck steps on the ε_T = 1.1e4 set); it is printed.
     // Unlike the fixed-step identity of tst_energy this is not exact for the extrapolated steps,
     // so it checks the accuracy of the adaptive run, not just the algebra.
     void energyBalance_data() {
@@ -332,6 +357,8 @@ private slots:
         auto mech = [&](const DynState& st) { return 0.5 * mass * st.v * st.v + 0.5 * k * st.x * st.x; };
         const double mech0 = mech(s), F0 = s.law.force_N;
         double work = 0, powerX = 0, damping = 0, contact = 0, stuckDissipation = 0, slipDissipation = 0;
+        double stuckPlastic = 0;
+        auto plastic = [&](const DynState& st) { return st.u - st.x - st.law.force_N / epsT; };
         const AdaptiveReport rep = advanceAdaptive(m, s, 15 * T, o, [&](const DynState& a, const DynState& b) {
             const double h = b.t - a.t, ua = m.stage.velocity(a.t), ub = m.stage.velocity(b.t);
             work += 0.5 * h * (a.law.force_N * ua + b.law.force_N * ub);
@@ -341,17 +368,20 @@ private slots:
                              (b.law.force_N * b.law.force_N - a.law.force_N * a.law.force_N) / (2 * epsT);
             contact += d;
             (b.stuck && a.stuck ? stuckDissipation : slipDissipation) += d;
+            if (b.stuck && a.stuck) stuckPlastic += 0.5 * (a.law.force_N + b.law.force_N) * (plastic(b) - plastic(a));
         });
         QVERIFY2(rep.status == RunStatus::Ok, rep.message.c_str());
         const double mechResidual = powerX - (mech(s) - mech0) - damping;
         qInfo("W_stage %.9g J: int F xdot %.9g, d(mech) %.3g, damping %.9g, residual %.3g (%.3g of W); slip %.9g J, "
-              "in stuck steps %.3g J; d(F^2/2eps) %.3g",
+              "in stuck steps %.3g J (quadrature), F dp %.3g J; d(F^2/2eps) %.3g",
               work, powerX, mech(s) - mech0, damping, mechResidual, mechResidual / work, slipDissipation, stuckDissipation,
+              stuckPlastic,
               (s.law.force_N * s.law.force_N - F0 * F0) / (2 * epsT));
         QVERIFY(work > 0);
         QVERIFY(slipDissipation > 0);
         QVERIFY2(std::abs(mechResidual) <= 1e-4 * work, qPrintable(QString("mechanical residual %1 of W").arg(mechResidual / work)));
-        QVERIFY(std::abs(stuckDissipation) <= 1e-4 * slipDissipation);
+        QVERIFY2(std::abs(stuckPlastic) <= 1e-6 * slipDissipation, qPrintable(QString("plastic work in stuck steps %1 J").arg(stuckPlastic)));
+        QVERIFY(std::abs(stuckDissipation) <= 3e-4 * slipDissipation);
         // Bookkeeping: ġ = u̇ − ẋ, so the stage work splits exactly into the two parts.
         const double dElastic = (s.law.force_N * s.law.force_N - F0 * F0) / (2 * epsT);
         QVERIFY(std::abs(work - (contact + dElastic + powerX)) <= 1e-12 * work);
