@@ -26,7 +26,9 @@ struct ModelSettings {
     // Stepping of the dynamics runs: 0 = the paper's fixed step dt; > 0 = the error-controlled
     // integrator with this relative displacement error target (IntegrationParams::tolerance,
     // 1e-5 … 0.5). The prescribed set-up always steps the measured grid (paramsFor sets 0).
-    double tolerance = 0.0;
+    // The default is error-controlled at kDefaultTolerance (docs/adaptive.md, "The app's default").
+    static constexpr double kDefaultTolerance = 1e-4;
+    double tolerance = kDefaultTolerance;
     // The laws to run, primary first.
     std::vector<LawKind> laws() const;
     // The law the parameters follow: the choice's law, the rate-state law for Both.

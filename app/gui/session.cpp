@@ -90,6 +90,8 @@ bool Session::fromJson(const QByteArray& json, Session& out, QString* error) {
             if (i.field == "tolerance")  // a non-number reads as NaN, which is refused too
                 return fail(QStringLiteral("\"tolerance\" must be %1").arg(QString::fromStdString(i.allowed)));
         s.settings.tolerance = ip.tolerance;
+    } else {
+        s.settings.tolerance = 0.0;  // version 1 had only the fixed step
     }
     const QJsonObject params = root.value("params").toObject();
     for (auto it = params.begin(); it != params.end(); ++it) {

@@ -1,24 +1,27 @@
-// Error-controlled integration of the spring–mass rig (issue 15): the paper's step (Newmark
-// average acceleration + the law's return mapping, dynamics.hpp) used as the base method of a
-// local Richardson extrapolation with step-size control, stick–slip switches located, and
-// dense output on the requested sampling grid.
+// Error-controlled integration of the spring–mass rig (issue 15): a base step used in a local
+// Richardson extrapolation with step-size control, stick–slip switches located, and dense output
+// on the requested sampling grid.
 //
-// Why step doubling around the existing step (and not a new Runge–Kutta or TR-BDF2 scheme):
-// the law stays a constrained update solved by its own return map with the consistent
-// tangent (the return-mapping character of the paper's algorithm), and the coupled step is
-// already unconditionally stable. Its global error has the expansion
-//   e(h) = c1 h + c2 h² + …   while slipping (backward Euler in Eqs. 2–4 of the law: c1 ≠ 0),
-//   e(h) = c2 h² + c4 h⁴ + …  while stuck (the law is linear elastic, the step is the
+// The base step: for laws with a rate-form flow rule (the rate-state law) TR-BDF2
+// (trbdf2.hpp), whose two stages are each the law's own return map, second order and L-stable;
+// otherwise (Coulomb, Dieterich–Ruina, or AdaptiveOptions::trBdf2 = false) the paper's step
+// (Newmark average acceleration + the law's backward-Euler return map, dynamics.hpp). Either way
+// the law stays a constrained update solved by its return map with the consistent tangent.
+// The global error of the base step expands as
+//   e(h) = c2 h² + c3 h³ + …   TR-BDF2, stick and slip,
+//   e(h) = c1 h + c2 h² + …   Newmark + backward Euler while slipping (c1 ≠ 0),
+//   e(h) = c2 h² + c4 h⁴ + …  Newmark while stuck (the law is linear elastic, the step is the
 //                              symmetric trapezoidal rule: only even powers),
 // so with one step h (y₁) and two steps h/2 (y₂) per accepted step
-//   slip:  y = 2 y₂ − y₁          removes c1: second order,
-//   stick: y = (4 y₂ − y₁)/3      removes c2: fourth order,
+//   y = (4 y₂ − y₁)/3   removes c2 (TR-BDF2 always; Newmark while stuck),
+//   y = 2 y₂ − y₁       removes c1 (Newmark while slipping),
 // and y₂ − y₁ is the embedded error estimate (of y₂, so conservative for y). A switch inside
 // a step would spoil both (the solution has a kink there), so the step is cut at the switch:
 // the stick → slip time is the root of the trial slip function Φ_trial(τ) of the scheme's own
 // elastic step of length τ (Eq. 1; Illinois), the slip → stick time the largest τ whose step
 // still slips (bisection). Cost: 3 base steps per accepted step, the step constants
-// (NewmarkConstants, law.prepare) cached on a grid of step sizes h_k = h_max 2^(−k/4).
+// (NewmarkConstants / TrBdf2Constants, law.prepare) cached on a grid of step sizes
+// h_k = h_max 2^(−k/4).
 #pragma once
 
 #include <functional>

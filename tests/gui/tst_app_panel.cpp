@@ -94,14 +94,23 @@ private slots:
 
     // The stepping choice: one value per change, dt greyed out while error-controlled (the
     // integrator picks its steps), the tolerance reaching the runs only in the dynamics set-up,
-    // and kept across preset switches like the model choice.
+    // and kept across preset switches like the model choice. Error-controlled by default.
     void steppingChoiceReachesDynamicsRuns() {
         ParameterPanel panel;
         QComboBox* box = panel.steppingBox();
         QVERIFY(box);
-        QCOMPARE(box->currentData().toDouble(), 0.0);  // the paper's fixed step by default
-        QVERIFY(panel.spinBox("dt")->isEnabled());
+        QCOMPARE(box->currentData().toDouble(), ModelSettings::kDefaultTolerance);
+        QCOMPARE(panel.settings().paramsFor(LawKind::RateState).integration.tolerance, ModelSettings::kDefaultTolerance);
+        QVERIFY(!panel.spinBox("dt")->isEnabled());
         QSignalSpy spy(&panel, &ParameterPanel::paramsChanged);
+        const int f = box->findData(0.0);  // the paper's fixed step
+        QVERIFY(f >= 0);
+        box->setCurrentIndex(f);
+        emit box->activated(f);
+        QCOMPARE(spy.count(), 1);
+        QCOMPARE(spy.last().first().value<ModelSettings>().paramsFor(LawKind::RateState).integration.tolerance, 0.0);
+        QVERIFY(panel.spinBox("dt")->isEnabled());
+        spy.clear();
         const int i = box->findData(1e-4);
         QVERIFY(i > 0);
         box->setCurrentIndex(i);

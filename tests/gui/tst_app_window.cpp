@@ -110,7 +110,7 @@ private slots:
         QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return std::abs(s.params.drive.amplitude_m - 2.5e-3) < 1e-12; }, &o));
         QCOMPARE(w->panel()->settings().params.drive.amplitude_m, o.settings.params.drive.amplitude_m);
         // The same run straight from the core.
-        const RunResult direct = simulate(w->panel()->settings().params);
+        const RunResult direct = simulate(w->panel()->settings().paramsFor(LawKind::RateState));
         QVERIFY(direct.ok());
         QwtPlotCurve* x = w->views()->timeSeries()->curve("rate-state: slider x");
         QwtPlotCurve* u = w->views()->timeSeries()->curve("rate-state: stage u");
@@ -156,7 +156,7 @@ private slots:
         PoincareOptions opt;
         opt.settleCycles = std::lround(o.settings.params.transientCycles);
         opt.cycles = std::lround(o.settings.params.cycles);
-        const PoincareSection section = poincareSection(o.settings.params, opt);
+        const PoincareSection section = poincareSection(o.settings.paramsFor(LawKind::RateState), opt);
         QVERIFY(section.ok());
         QwtPlotCurve* dots = poincare->curve("rate-state: section");
         QVERIFY(dots);
