@@ -69,6 +69,10 @@ constexpr double kStuckAllowance = 10.0;
 // second-order y₂: slip steps may use kTrSlipAllowance× the allowance. Calibrated (tst_adaptive's
 // four sets, TOL 1e-2 … 1e-5; see docs/adaptive.md).
 constexpr double kTrSlipAllowance = 3.0;
+// Largest difference of α between the one-step and the two-half-step results of an accepted
+// step, in units of the law's α scale (r of K1(α) = C1 (exp(α/r) − 1)): 10 % in the strength's
+// exponent. A resolution guard (ratio() below), not part of the tolerance.
+constexpr double kAlphaResolution = 0.1;
 
 // Velocity weight of the extrapolation in viscoplastic slip (rate-state law). The overstress
 // relaxes in τ_r = η t_N/ε_T (4 µs at the paper's ε_T = 1e6), so for h ≫ τ_r backward Euler
@@ -117,6 +121,7 @@ public:
         harmonic_ = m.stage.isHarmonic();
         if constexpr (requires { Law::kViscous; }) viscous_ = Law::kViscous;
         if constexpr (HasFlowRates<Law>) tr_ = o.trBdf2;
+        if constexpr (requires { law.params.r; }) alphaScale_ = law.params.r;
         omega_ = harmonic_ ? m.stage.omega() : 0.0;
     }
     AdaptiveReport run(DynState& s, double tEnd, const AdaptiveObserver& obs, const RunControl& ctl);
@@ -138,7 +143,7 @@ private:
         if constexpr (HasFlowRates<Law>) {
             if (tr_) {
                 if (std::isnan(uGamma)) uGamma = m_.stage.displacement(y.t + detail::kTrGamma * kt.T.h);
-                ok = detail::trBdf2Step(kt.T, law_, kt.prep, uGamma, u1, y, lIts, why, bad);
+                ok = detail::trBdf2Step(kt.T, law_, kt.prep, m_.stage, uGamma, u1, y, lIts, why, bad);
             }
         }
         if (!tr_) ok = detail::newmarkStep(kt.K, law_, &kt.prep, u1, y, Coupling::Condensed, nIts, lIts, why, bad);
@@ -200,7 +205,14 @@ private:
         const double allowed =
             o_.tolerance * std::max(scale_, maxAbsX_) * kPerPeriod *
             (stuckThroughout ? kStuckAllowance : (tr_ ? kTrSlipAllowance : 1.0)) * h / period_;
-        return est / allowed;
+        // Guard, not accuracy: the extrapolation is only meaningful where the one step and the two
+        // half steps nearly agree. Where α (whose effect on the strength is exponential, K1 ∝
+        // exp(α/r)) differs between them by more than kAlphaResolution·r, the step is not
+        // resolved and y + (y₂ − y₁)/3 can land anywhere (seen: α = +17.7 from y₂ = −0.0001 and
+        // y₁ = −53 in one accepted step, the contact then stuck for good; random parameter sets
+        // in tst_adaptive::randomSetsAgreeAcrossTolerances).
+        const double guard = std::abs(y2.law.alpha - y1.law.alpha) / (kAlphaResolution * alphaScale_);
+        return std::max(est / allowed, guard);
     }
     double trialSlip(const DynState& s, double tau) const;
     double locate(const DynState& s, double h, const DynState& y1);
@@ -238,7 +250,7 @@ private:
     const DynamicsModel& m_;
     const Law& law_;
     const AdaptiveOptions& o_;
-    double period_ = 1, hMax_ = 0, hMin_ = 0, scale_ = 0, maxAbsX_ = 0, omega_ = 0;
+    double period_ = 1, hMax_ = 0, hMin_ = 0, scale_ = 0, maxAbsX_ = 0, omega_ = 0, alphaScale_ = 1;
     bool harmonic_ = false, viscous_ = false, tr_ = false;
     std::array<double, kLevels> hTable_{};
     int kMax_ = 0;

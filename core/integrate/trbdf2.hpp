@@ -99,12 +99,23 @@ inline double trElasticEndForce(const TrBdf2Constants& K, const DynState& s, dou
 // s.t is advanced by K.h; s.a is the equilibrium acceleration at the end (Eq. 8); s.slipRate is
 // the second stage's λ̇, s.stuck whether both stages stuck. False (with `why`, `badValue`) on failure.
 template <class Law, class Prepared>
-inline bool trBdf2Step(const TrBdf2Constants& K, const Law& law, Prepared& prep, double uGamma, double u1, DynState& s,
-                       int& lawIts, const char*& why, double& badValue) {
+inline bool trBdf2Step(const TrBdf2Constants& K, const Law& law, Prepared& prep, const StageMotion& stage, double uGamma,
+                       double u1, DynState& s, int& lawIts, const char*& why, double& badValue) {
     const double d = K.d;
     const double p0 = s.u - s.x - s.law.force_N / K.eps;
-    const FlowRates f0 = law.flowRates(s.law, K.tN);
-    const double sgn0 = s.law.force_N >= 0.0 ? 1.0 : -1.0;
+    // λ̇_n: the slip rate the last stage solved for (s.slipRate, "first same as last"), not
+    // ⟨Φ_n⟩/(η t_N): the two agree while the flow rule holds, but where the return map keeps F
+    // from changing sign (strength μ + K1 < 0, possible when C1 > μ) Φ_n is not η t_N λ̇ and the
+    // rate from it is far too large (seen: α driven to −28 where the solution has −1 … −10).
+    FlowRates f0;
+    if (!s.stuck) {
+        const double ld = s.slipRate;
+        f0 = {ld, -ld / law.params.Dc_m * (s.law.alpha + law.params.C2() * ld)};
+    }
+    // Direction of the slip: sign F (Eq. 4), or, where the return map held F at 0 (strength
+    // below 0), the sign of the slip velocity V = u̇ − ẋ.
+    const double dir = s.law.force_N != 0.0 ? s.law.force_N : stage.velocity(s.t) - s.v;
+    const double sgn0 = dir >= 0.0 ? 1.0 : -1.0;
     const double a0 = (s.law.force_N - K.c * s.v - K.k * s.x) / K.m;
     const TrStage y0{s.x, s.v, p0, s.law.alpha};
     // Trapezoidal stage: y_γ = y_n + d (f_n + f_γ).

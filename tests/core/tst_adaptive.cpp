@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <complex>
+#include <random>
 #include <vector>
 
 #include "core/analysis/stick_threshold.hpp"
@@ -385,6 +386,83 @@ private slots:
         // Bookkeeping: ġ = u̇ − ẋ, so the stage work splits exactly into the two parts.
         const double dElastic = (s.law.force_N * s.law.force_N - F0 * F0) / (2 * epsT);
         QVERIFY(std::abs(work - (contact + dElastic + powerX)) <= 1e-12 * work);
+    }
+
+    // Random parameter sets over the app's slider ranges (log-uniform: A 0.1–5 mm, f 1–20 Hz,
+    // t_N 0.5–40 N, k 250–18 000 N/m, m* 0.1–2 kg, damping ratio 1e-4–0.05, μ 0.05–0.8,
+    // C1 ≤ μ, η 0.01–10 s/m, D_c 1–1000 µm, r 0.1–5, v_c 1e-3–1 m/s, ε_T 1e3–1e8 N/m), one
+    // cycle from rest, error relative to max(max|x|, 5 % of A) (the integrator's own scale):
+    // every run succeeds; TR-BDF2 at TOL 1e-4 and 1e-3 is within 2 TOL of TOL 1e-5; the paper's
+    // step extrapolated (TOL 1e-5) and the fixed step at T/200 000 agree with it to 1e-3.
+    // Seen on 100 sets (seed 1): 1.5e-4, 8.7e-4 (max), 3.6e-4, 8.6e-5. Written after this check
+    // found three faults on the paper's sets' neighbours (docs/adaptive.md, session 16): α
+    // extrapolated to +17.7 in one accepted step, the TR stage's slip rate taken from Φ where
+    // the return map held F at 0, and that stage's slip direction at F = 0. C1 > μ lets the
+    // strength μ + K1 fall below 0 (the return map then holds F at 0; the fixed step itself
+    // does not converge there at T/1.6e6): those sets are only required to run.
+    void randomSetsAgreeAcrossTolerances() {
+        std::mt19937 rng(1);
+        auto lu = [&](double a, double b) {
+            return std::exp(std::uniform_real_distribution<double>(std::log(a), std::log(b))(rng));
+        };
+        auto xs = [](const RunResult& r) {
+            std::vector<double> x;
+            for (const Sample& s : r.samples) x.push_back(s.slider_m);
+            return x;
+        };
+        double worst4 = 0, worst3 = 0, worstN = 0, worstF = 0;
+        int degenerate = 0;
+        for (int i = 0; i < 60; ++i) {
+            SimParams p = lawParams(false, 1);
+            p.drive.amplitude_m = lu(1e-4, 5e-3);
+            p.drive.frequency_Hz = lu(1, 20);
+            p.rig.normalForce_N = lu(0.5, 40);
+            p.rig.stiffness_N_per_m = lu(250, 18000);
+            p.rig.mass_kg = lu(0.1, 2);
+            p.rig.damping_Ns_per_m = dampingFromRatio(lu(1e-4, 0.05), p.rig.stiffness_N_per_m, p.rig.mass_kg);
+            auto& rs = p.lawParams<RateStateParams>();
+            rs.mu = lu(0.05, 0.8);
+            rs.C1 = lu(0.01, i % 6 == 5 ? 3.0 : 1.0) * rs.mu;  // every sixth may have C1 > μ
+            rs.eta_s_per_m = lu(0.01, 10);
+            rs.Dc_m = lu(1e-6, 1e-3);
+            rs.r = lu(0.1, 5);
+            rs.vc_mps = lu(1e-3, 1);
+            rs.epsT_N_per_m = lu(1e3, 1e8);
+            p.integration.outputInterval_s = p.drive.period() / 100;
+            auto run = [&](double tol, bool tr) {
+                AdaptiveOptions o;
+                o.tolerance = tol;
+                o.trBdf2 = tr;
+                return simulateAdaptive(p, o);
+            };
+            const RunResult r5 = run(1e-5, true), r4 = run(1e-4, true), r3 = run(1e-3, true), n5 = run(1e-5, false);
+            for (const RunResult* r : {&r5, &r4, &r3, &n5}) QVERIFY2(r->ok() && allFinite(r->samples), r->message.c_str());
+            if (rs.C1 > rs.mu) { ++degenerate; continue; }
+            SimParams q = p;
+            q.integration.dt_s = p.drive.period() / 200000;
+            const RunResult f = simulateDynamics(q);
+            QVERIFY(f.ok());
+            const std::vector<double> ref = xs(r5);
+            auto err = [&](const RunResult& r) {
+                const std::vector<double> x = xs(r);
+                if (x.size() != ref.size()) return double(INFINITY);
+                double e = 0, m = 0.05 * p.drive.amplitude_m;
+                for (size_t j = 0; j < x.size(); ++j) {
+                    e = std::max(e, std::abs(x[j] - ref[j]));
+                    m = std::max(m, std::abs(ref[j]));
+                }
+                return e / m;
+            };
+            const double e4 = err(r4), e3 = err(r3), eN = err(n5), eF = err(f);
+            worst4 = std::max(worst4, e4);
+            worst3 = std::max(worst3, e3);
+            worstN = std::max(worstN, eN);
+            worstF = std::max(worstF, eF);
+            const QString what = QString("set %1: TOL 1e-4 %2, 1e-3 %3, Newmark %4, fixed %5").arg(i).arg(e4).arg(e3).arg(eN).arg(eF);
+            QVERIFY2(e4 <= 2e-4 && e3 <= 2e-3 && eN <= 1e-3 && eF <= 1e-3, qPrintable(what));
+        }
+        qInfo("60 sets (%d with C1 > mu, run only): worst TOL 1e-4 %.2e, 1e-3 %.2e, Newmark %.2e, fixed T/200000 %.2e",
+              degenerate, worst4, worst3, worstN, worstF);
     }
 
     void optionsValidate() {
