@@ -95,7 +95,7 @@ private slots:
     // 5 cycles. Coulomb (Newmark + extrapolation, the law exact in closed form, switches
     // located): h_max = T/1000 … T/8000 against the fixed step at T/400 000, slope ≥ 1.8 (seen
     // 2.05). Rate-state by TR-BDF2 (trbdf2.hpp) + extrapolation: T/1000 … T/4000 against the
-    // extrapolated reference (beyond, its floor of ~1e-6), slope ≥ 2 (seen 3.1: the kept value
+    // extrapolated reference (beyond, its floor of ~1e-6), slope ≥ 2 (seen 2.99: the kept value
     // (4y₂ − y₁)/3 of a second-order step). Rate-state by the paper's step (trBdf2 off), for
     // comparison: order reduction where h approaches η t_N/ε_T ≈ 4 µs, slope ≥ 1.1 (seen 1.3).
     void observedOrder_data() {
@@ -135,8 +135,8 @@ private slots:
     // it from above (error ≤ 2 TOL); from below only ≥ TOL/50. Rate-state runs are measured
     // against the extrapolated reference (the plain T/400 000 one is itself ~1e-5 off).
     // Seen (TOL 1e-2 … 1e-5): Coulomb 1 mm 1.01 1.28 0.74 0.74; Coulomb 0.4 mm 0.12 0.25 0.34
-    // 0.41; rate-state (TR-BDF2) 1 mm 1.75 0.57 0.69 1.13; rate-state 0.4 mm 0.27 0.10 0.04
-    // 0.18: on the compliant set TR-BDF2's local control is 10–25× tighter than
+    // 0.41; rate-state (TR-BDF2) 1 mm 1.86 0.57 0.69 1.35; rate-state 0.4 mm 0.28 0.11 0.04
+    // 0.17: on the compliant set TR-BDF2's local control is 10–25× tighter than
     // asked (the global error there grows less than the sum of local ones).
     void errorFollowsTolerance_data() {
         QTest::addColumn<bool>("coulomb");
