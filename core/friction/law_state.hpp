@@ -24,12 +24,4 @@ struct ReturnMapResult {
     int iterations = 0;          // local Newton/bisection iterations
 };
 
-// Rates of the law's internal variables at a state (the right-hand side of its flow rule):
-// λ̇ ≥ 0 and α̇. Laws with a rate-form flow rule provide flowRates(state, t_N); the
-// second-order step (integrate/trbdf2.hpp) needs them for its explicit trapezoidal part.
-struct FlowRates {
-    double slipRate_mps = 0;  // λ̇ [m/s]
-    double alphaRate = 0;     // α̇ [1/s]
-};
-
 }  // namespace stickslip

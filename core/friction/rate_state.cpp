@@ -58,9 +58,8 @@ double RateStateLaw::slipFunction(const LawState& s, double tN) const {
     return std::abs(s.force_N) - tN * (params.mu + K1(s.alpha));
 }
 
-FlowRates RateStateLaw::flowRates(const LawState& s, double tN) const {
-    const double lambdaDot = std::max(slipFunction(s, tN), 0.0) / (params.eta_s_per_m * tN);
-    return {lambdaDot, -lambdaDot / params.Dc_m * (s.alpha + params.C2() * lambdaDot)};
+double RateStateLaw::alphaRate(double alpha, double v) const {
+    return -v / params.Dc_m * (alpha + params.C2() * v);
 }
 
 double RateStateLaw::steadyStateAlpha(double v) const { return -params.C2() * std::abs(v); }

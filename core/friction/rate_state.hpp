@@ -66,8 +66,9 @@ struct RateStateLaw {
     Prepared prepare(double returnStiffness_N_per_m, double dt_s, double normalForce_N) const;
 
     double K1(double alpha) const;                                    // Eq. 1
-    // λ̇ = ⟨Φ⟩/(η t_N) (Eq. 3) and α̇ = −(λ̇/D_c)(α + C2 λ̇) (Eq. 2) at state s.
-    FlowRates flowRates(const LawState& s, double normalForce_N) const;
+    // α̇ = −(λ̇/D_c)(α + C2 λ̇) (Eq. 2) at slip rate λ̇ ≥ 0: the explicit part of the
+    // second-order step (integrate/trbdf2.hpp).
+    double alphaRate(double alpha, double slipRate_mps) const;
     double slipFunction(const LawState& s, double normalForce_N) const;  // Φ [N]
     // |F|/t_N in steady sliding at |V| (Eq. 5): μ + K1(−C2|V|) + η|V|.
     double steadyStateRatio(double slipVelocity_mps) const;

@@ -98,8 +98,8 @@ struct Kit {
     Kit(const RigParams& rig, const Law& law, double h, double omega, bool tr)
         : K(rig, law.epsT(), h), T(rig, law.epsT(), h),
           prep(tr ? law.prepare(T.returnStiffness, T.d, T.tN) : law.prepare(K.returnStiffness, h, K.tN)),
-          cosWh(std::cos(omega * h)), sinWh(std::sin(omega * h)), cosWg(std::cos(omega * detail::kTrGamma * h)),
-          sinWg(std::sin(omega * detail::kTrGamma * h)) {}
+          cosWh(std::cos(omega * h)), sinWh(std::sin(omega * h)),
+          cosWg(tr ? std::cos(omega * detail::kTrGamma * h) : 1.0), sinWg(tr ? std::sin(omega * detail::kTrGamma * h) : 0.0) {}
 };
 
 template <class Law>
@@ -120,7 +120,7 @@ public:
         for (int k = 0; k < kLevels; ++k) hTable_[static_cast<size_t>(k)] = hMax_ * std::exp2(-0.25 * k);
         harmonic_ = m.stage.isHarmonic();
         if constexpr (requires { Law::kViscous; }) viscous_ = Law::kViscous;
-        if constexpr (HasFlowRates<Law>) tr_ = o.trBdf2;
+        if constexpr (HasAlphaRate<Law>) tr_ = o.trBdf2;
         if constexpr (requires { law.params.r; }) alphaScale_ = law.params.r;
         omega_ = harmonic_ ? m.stage.omega() : 0.0;
     }
@@ -140,7 +140,7 @@ private:
         double bad = 0;
         ++rep_.baseSteps;
         bool ok = false;
-        if constexpr (HasFlowRates<Law>) {
+        if constexpr (HasAlphaRate<Law>) {
             if (tr_) {
                 if (std::isnan(uGamma)) uGamma = m_.stage.displacement(y.t + detail::kTrGamma * kt.T.h);
                 ok = detail::trBdf2Step(kt.T, law_, kt.prep, m_.stage, uGamma, u1, y, lIts, why, bad);

@@ -26,9 +26,10 @@
 
 namespace stickslip {
 
+// Laws whose internal variable has a rate form α̇(α, λ̇) (Eq. 2) next to a prepared return map.
 template <class Law>
-concept HasFlowRates = requires(const Law& l, const LawState& s) {
-    { l.flowRates(s, 0.0) } -> std::same_as<FlowRates>;
+concept HasAlphaRate = requires(const Law& l) {
+    { l.alphaRate(0.0, 0.0) } -> std::same_as<double>;
 } && detail::HasPreparedReturnMap<Law>;
 
 namespace detail {
@@ -107,11 +108,8 @@ inline bool trBdf2Step(const TrBdf2Constants& K, const Law& law, Prepared& prep,
     // ⟨Φ_n⟩/(η t_N): the two agree while the flow rule holds, but where the return map keeps F
     // from changing sign (strength μ + K1 < 0, possible when C1 > μ) Φ_n is not η t_N λ̇ and the
     // rate from it is far too large (seen: α driven to −28 where the solution has −1 … −10).
-    FlowRates f0;
-    if (!s.stuck) {
-        const double ld = s.slipRate;
-        f0 = {ld, -ld / law.params.Dc_m * (s.law.alpha + law.params.C2() * ld)};
-    }
+    const double lambdaDot0 = s.stuck ? 0.0 : s.slipRate;
+    const double alphaDot0 = lambdaDot0 > 0.0 ? law.alphaRate(s.law.alpha, lambdaDot0) : 0.0;
     // Direction of the slip: sign F (Eq. 4), or, where the return map held F at 0 (strength
     // below 0), the sign of the slip velocity V = u̇ − ẋ.
     const double dir = s.law.force_N != 0.0 ? s.law.force_N : stage.velocity(s.t) - s.v;
@@ -119,7 +117,7 @@ inline bool trBdf2Step(const TrBdf2Constants& K, const Law& law, Prepared& prep,
     const double a0 = (s.law.force_N - K.c * s.v - K.k * s.x) / K.m;
     const TrStage y0{s.x, s.v, p0, s.law.alpha};
     // Trapezoidal stage: y_γ = y_n + d (f_n + f_γ).
-    const TrStage start1{y0.x + d * y0.v, y0.v + d * a0, y0.p + d * sgn0 * f0.slipRate_mps, y0.alpha + d * f0.alphaRate};
+    const TrStage start1{y0.x + d * y0.v, y0.v + d * a0, y0.p + d * sgn0 * lambdaDot0, y0.alpha + d * alphaDot0};
     TrStage yg{}, y1{};
     ReturnMapResult rm;
     if (!trStage(K, prep, start1, uGamma, s.law, s.stuck ? 0.0 : s.slipRate * d, yg, rm)) {

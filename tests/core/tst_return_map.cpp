@@ -75,6 +75,14 @@ private slots:
         QVERIFY(relDiff(law.steadyStateRatio(V), expected) < 1e-12);
         QVERIFY(relDiff(law.steadyStateAlpha(V), -std::abs(V) / vc) < 1e-12);
         QVERIFY(relDiff(steadyStateRatio(FrictionLaw{law}, V), expected) < 1e-12);
+        // Eq. 2's rate form (used by the TR-BDF2 step): α̇ = 0 at the steady state, and the
+        // backward-Euler α update of a small step has α̇ as its slope.
+        QVERIFY(std::abs(law.alphaRate(law.steadyStateAlpha(V), std::abs(V))) < 1e-9 * std::abs(V) / p.Dc_m);
+        const double a0 = -0.3, rate = 0.02, h = 1e-10;
+        const double beAlpha = (a0 - rate * rate * h / (p.Dc_m * vc)) / (1.0 + rate * h / p.Dc_m);  // rate_state.cpp
+        QVERIFY(relDiff((beAlpha - a0) / h, law.alphaRate(a0, rate)) < 1e-5);  // O(λ̇h/D_c) = 1e-7
+        QVERIFY(relDiff(law.alphaRate(a0, rate), -rate / p.Dc_m * (a0 + rate / vc)) < 1e-14);
+        QCOMPARE(law.alphaRate(a0, 0.0), 0.0);
     }
 
     // The same through the prescribed-slip set-up (simulatePrescribed from a velocity history).
