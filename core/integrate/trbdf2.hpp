@@ -41,11 +41,19 @@ inline constexpr double kTrW0 = (1.0 - kTrGamma) * (1.0 - kTrGamma) / (kTrGamma 
 
 // Constants of the stages of a step of length h (rig, ε_T and h fixed), computed once per size.
 struct TrBdf2Constants {
-    double h, d, m, c, k, tN, eps, Keff, invKeff, invPredictor, returnStiffness;
+    double h, d, invD, m, c, k, tN, eps, Keff, invKeff, invPredictor, returnStiffness;
     TrBdf2Constants(const RigParams& rig, double epsT, double h_)
-        : h(h_), d(0.5 * kTrGamma * h_), m(rig.mass_kg), c(rig.damping_Ns_per_m), k(rig.stiffness_N_per_m),
+        : h(h_), d(0.5 * kTrGamma * h_), invD(1.0 / d), m(rig.mass_kg), c(rig.damping_Ns_per_m), k(rig.stiffness_N_per_m),
           tN(rig.normalForce_N), eps(epsT), Keff(m / (d * d) + c / d + k), invKeff(1.0 / Keff),
           invPredictor(1.0 / (Keff + epsT)), returnStiffness(epsT * Keff / (Keff + epsT)) {}
+    // x of a stage from (xs, vs) to stage displacement uNew with the plastic slip held at p
+    // (the elastic predictor, oscillator condensed: K x = F + b, F = ε_T (uNew − x − p)).
+    double elasticX(double xs, double vs, double p, double uNew) const {
+        const double b = m * invD * (xs * invD + vs) + c * xs * invD;
+        return (b + eps * (uNew - p)) * invPredictor;
+    }
+    double plasticSlip(const DynState& s) const { return s.u - s.x - s.law.force_N / eps; }  // p = g − F/ε_T
+    double acceleration(double x, double v, double F) const { return (F - c * v - k * x) / m; }  // Eq. 8
 };
 
 // The variables a stage advances (F follows from them and u).
@@ -59,9 +67,7 @@ struct TrStage {
 template <class Prepared>
 inline bool trStage(const TrBdf2Constants& K, Prepared& prep, const TrStage& ys, double uNew, const LawState& law,
                     double slipHint, TrStage& out, ReturnMapResult& rm) {
-    const double id = 1.0 / K.d;
-    const double b = K.m * id * (ys.x * id + ys.v) + K.c * ys.x * id;  // K x = F + b
-    const double xTrial = (b + K.eps * (uNew - ys.p)) * K.invPredictor;
+    const double xTrial = K.elasticX(ys.x, ys.v, ys.p, uNew);
     const double fTrial = K.eps * (uNew - xTrial - ys.p);
     LawState st = law;
     st.alpha = ys.alpha;
@@ -74,7 +80,7 @@ inline bool trStage(const TrBdf2Constants& K, Prepared& prep, const TrStage& ys,
         x += (rm.state.force_N - fTrial) * K.invKeff;
         p += (fTrial >= 0.0 ? 1.0 : -1.0) * rm.slipIncrement_m;
     }
-    out = {x, (x - ys.x) * id, p, rm.state.alpha};
+    out = {x, (x - ys.x) * K.invD, p, rm.state.alpha};
     return true;
 }
 
@@ -82,17 +88,10 @@ inline bool trStage(const TrBdf2Constants& K, Prepared& prep, const TrStage& ys,
 // asked to bear at its end. Φ of it is ≤ 0 when the step sticks in both stages (both stages'
 // trials are elastic then), so its root in the step length locates a slip onset.
 inline double trElasticEndForce(const TrBdf2Constants& K, const DynState& s, double uGamma, double u1) {
-    const double d = K.d, id = 1.0 / d;
-    const double p0 = s.u - s.x - s.law.force_N / K.eps;
-    const double a0 = (s.law.force_N - K.c * s.v - K.k * s.x) / K.m;
-    auto elastic = [&](double xs, double vs, double uNew, double& x, double& v) {
-        const double b = K.m * id * (xs * id + vs) + K.c * xs * id;
-        x = (b + K.eps * (uNew - p0)) * K.invPredictor;
-        v = (x - xs) * id;
-    };
-    double xg, vg, x1, v1;
-    elastic(s.x + d * s.v, s.v + d * a0, uGamma, xg, vg);
-    elastic(kTrW1 * xg - kTrW0 * s.x, kTrW1 * vg - kTrW0 * s.v, u1, x1, v1);
+    const double d = K.d, p0 = K.plasticSlip(s), a0 = K.acceleration(s.x, s.v, s.law.force_N);
+    const double xs1 = s.x + d * s.v, vs1 = s.v + d * a0;
+    const double xg = K.elasticX(xs1, vs1, p0, uGamma), vg = (xg - xs1) * K.invD;
+    const double x1 = K.elasticX(kTrW1 * xg - kTrW0 * s.x, kTrW1 * vg - kTrW0 * s.v, p0, u1);
     return K.eps * (u1 - x1 - p0);
 }
 
@@ -103,7 +102,7 @@ template <class Law, class Prepared>
 inline bool trBdf2Step(const TrBdf2Constants& K, const Law& law, Prepared& prep, const StageMotion& stage, double uGamma,
                        double u1, DynState& s, int& lawIts, const char*& why, double& badValue) {
     const double d = K.d;
-    const double p0 = s.u - s.x - s.law.force_N / K.eps;
+    const double p0 = K.plasticSlip(s);
     // λ̇_n: the slip rate the last stage solved for (s.slipRate, "first same as last"), not
     // ⟨Φ_n⟩/(η t_N): the two agree while the flow rule holds, but where the return map keeps F
     // from changing sign (strength μ + K1 < 0, possible when C1 > μ) Φ_n is not η t_N λ̇ and the
@@ -114,13 +113,13 @@ inline bool trBdf2Step(const TrBdf2Constants& K, const Law& law, Prepared& prep,
     // below 0), the sign of the slip velocity V = u̇ − ẋ.
     const double dir = s.law.force_N != 0.0 ? s.law.force_N : stage.velocity(s.t) - s.v;
     const double sgn0 = dir >= 0.0 ? 1.0 : -1.0;
-    const double a0 = (s.law.force_N - K.c * s.v - K.k * s.x) / K.m;
+    const double a0 = K.acceleration(s.x, s.v, s.law.force_N);
     const TrStage y0{s.x, s.v, p0, s.law.alpha};
     // Trapezoidal stage: y_γ = y_n + d (f_n + f_γ).
     const TrStage start1{y0.x + d * y0.v, y0.v + d * a0, y0.p + d * sgn0 * lambdaDot0, y0.alpha + d * alphaDot0};
     TrStage yg{}, y1{};
     ReturnMapResult rm;
-    if (!trStage(K, prep, start1, uGamma, s.law, s.stuck ? 0.0 : s.slipRate * d, yg, rm)) {
+    if (!trStage(K, prep, start1, uGamma, s.law, lambdaDot0 * d, yg, rm)) {
         why = "return mapping did not converge (slip increment, first stage)";
         badValue = rm.slipIncrement_m;
         return false;
@@ -148,7 +147,7 @@ inline bool trBdf2Step(const TrBdf2Constants& K, const Law& law, Prepared& prep,
     s.v = y1.v;
     s.u = u1;
     s.law = rm.state;
-    s.a = (F - K.c * y1.v - K.k * y1.x) / K.m;
+    s.a = K.acceleration(y1.x, y1.v, F);
     s.slipRate = rm.stuck ? 0.0 : rm.slipIncrement_m / d;
     // Stuck only when both stages were elastic: a step that slips in its first stage and sticks
     // in its second holds a stop (and its slip), which the caller must see as a switch.

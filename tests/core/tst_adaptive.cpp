@@ -28,12 +28,15 @@ SimParams lawParams(bool coulomb, double cycles) {
 // Fixed-step reference: the paper's scheme at 400 000 steps per cycle (the reference),
 // sampled at T/100. Its own error is below 1e-5 of the amplitude (first order from 9.7e-4 at
 // 7 200 steps per cycle).
-std::vector<double> referenceTrace(SimParams p) {
-    p.integration.dt_s = p.drive.period() / 400000.0;
-    const RunResult r = simulateDynamics(p);
+std::vector<double> sliderTrace(const RunResult& r) {
     std::vector<double> x;
     for (const Sample& s : r.samples) x.push_back(s.slider_m);
     return x;
+}
+
+std::vector<double> referenceTrace(SimParams p) {
+    p.integration.dt_s = p.drive.period() / 400000.0;
+    return sliderTrace(simulateDynamics(p));
 }
 
 // For the rate-state law the fixed step is first order (its error at T/400 000 is ~1e-5, the
@@ -49,10 +52,11 @@ std::vector<double> extrapolatedReference(SimParams p) {
     return x;
 }
 
-// max |x − x_ref| / max |x_ref| over the samples; NaN when the run failed or the grids differ.
-double relativeError(const RunResult& r, const std::vector<double>& ref) {
+// max |x − x_ref| / max(max |x_ref|, floor) over the samples; NaN when the run failed or the
+// grids differ.
+double relativeError(const RunResult& r, const std::vector<double>& ref, double floor = 0.0) {
     if (!r.ok() || r.samples.size() != ref.size()) return NAN;
-    double e = 0, amp = 0;
+    double e = 0, amp = floor;
     for (size_t i = 0; i < ref.size(); ++i) {
         e = std::max(e, std::abs(r.samples[i].slider_m - ref[i]));
         amp = std::max(amp, std::abs(ref[i]));
@@ -405,11 +409,6 @@ private slots:
         auto lu = [&](double a, double b) {
             return std::exp(std::uniform_real_distribution<double>(std::log(a), std::log(b))(rng));
         };
-        auto xs = [](const RunResult& r) {
-            std::vector<double> x;
-            for (const Sample& s : r.samples) x.push_back(s.slider_m);
-            return x;
-        };
         double worst4 = 0, worst3 = 0, worstN = 0, worstF = 0;
         int degenerate = 0;
         for (int i = 0; i < 60; ++i) {
@@ -442,17 +441,8 @@ private slots:
             q.integration.dt_s = p.drive.period() / 200000;
             const RunResult f = simulateDynamics(q);
             QVERIFY(f.ok());
-            const std::vector<double> ref = xs(r5);
-            auto err = [&](const RunResult& r) {
-                const std::vector<double> x = xs(r);
-                if (x.size() != ref.size()) return double(INFINITY);
-                double e = 0, m = 0.05 * p.drive.amplitude_m;
-                for (size_t j = 0; j < x.size(); ++j) {
-                    e = std::max(e, std::abs(x[j] - ref[j]));
-                    m = std::max(m, std::abs(ref[j]));
-                }
-                return e / m;
-            };
+            const std::vector<double> ref = sliderTrace(r5);
+            auto err = [&](const RunResult& r) { return relativeError(r, ref, 0.05 * p.drive.amplitude_m); };
             const double e4 = err(r4), e3 = err(r3), eN = err(n5), eF = err(f);
             worst4 = std::max(worst4, e4);
             worst3 = std::max(worst3, e3);
