@@ -28,6 +28,9 @@ struct ExtendedModel {
 struct RunContext {
     double normalForce_N = 6.2;          // t_N of the run [N]
     double accumulatedSlipStart_m = 0;   // slip already accumulated on the specimen (wear_drift) [m]
+    // Force the contact carries at the start [N]; NaN: at rest (F = 0). A measured run cut out
+    // of a longer recording starts loaded (prescribed set-up: its first measured force).
+    double initialForce_N = std::numeric_limits<double>::quiet_NaN();
 };
 
 // An effect-aware friction law with the same concept as RateStateLaw (returnMap, epsT), so it
@@ -61,7 +64,11 @@ struct ExtendedLaw {
     double K1(double alpha) const;  // Eq. 1
     // μ with the load-, wear- and direction-dependent shifts for a force of sign `forceSign`.
     double muEffective(const LawState& s, double forceSign, double normalForce_N) const;
-    // Contact at rest at the start of a run: F = 0, α = 0, strength at its law value.
+    // Contact at rest at the start of a run: F = 0, α = 0, strength at its law value. With
+    // ctx.initialForce_N: that force, with the lagged strength and the play to match. α stays 0:
+    // it is not measured, and a sliding state inferred from the signs of F and V is wrong for a
+    // run that starts from rest (seen: a false frictional_lag on such runs); its transient lasts
+    // D_c of slip.
     LawState initialState(const RunContext& ctx) const;
 };
 

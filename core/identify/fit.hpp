@@ -243,7 +243,7 @@ struct RunScore {
     double rms_m = 0.0;         // slider displacement RMS error (dynamics; else 0)
     double nrmseDisp = 0.0;
     double nrmse = 0.0;
-    double sse = 0.0, ssMeasured = 0.0;  // Σ (normalised) errors² and Σ measured², for pooling
+    double sse = 0.0, ssMeasured = 0.0;  // n NRMSE² and n (samples), for pooling
     bool ok = false;
     std::string message;
 };
@@ -255,7 +255,7 @@ struct DatasetFit {
     ModelSpec model;                 // the fitted values (free and fixed)
     FitResult fit;
     std::vector<RunScore> runs;      // fit runs first, then validation runs
-    double fitNrmse = 0.0;           // pooled over the fit runs
+    double fitNrmse = 0.0;           // pooled over the fit runs: √(Σ n_k NRMSE_k² / Σ n_k)
     double validationNrmse = 0.0;    // pooled over the validation runs (NaN when none)
     // Honest standard errors. The Jacobian formula assumes independent residuals; neighbouring
     // residuals of one run (one shooting segment) are correlated (filtered noise, a wrong

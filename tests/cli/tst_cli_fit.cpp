@@ -77,8 +77,10 @@ CsvScores scoresFromCsv(const QString& path, bool dynamics) {
         double nr = std::sqrt(a.eF / a.mF);
         if (dynamics) nr = std::sqrt(0.5 * (a.eF / a.mF + a.eX / a.mX));
         out.nrmse[run] = nr;
-        if (dynamics) { pool[a.role].first += nr * nr * a.n; pool[a.role].second += a.n; }
-        else { pool[a.role].first += a.eF; pool[a.role].second += a.mF; }
+        // Both set-ups pool each run's error over its own measured RMS (the fit's objective and
+        // identify's NRMSE): √(Σ n_k NRMSE_k² / Σ n_k).
+        pool[a.role].first += nr * nr * a.n;
+        pool[a.role].second += a.n;
     }
     for (const auto& [role, p] : pool) out.pooled[role] = std::sqrt(p.first / p.second);
     return out;

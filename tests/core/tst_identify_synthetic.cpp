@@ -48,9 +48,6 @@ const std::map<std::string, const char*> kKnownMiss = {
     {"D09", "frictional_lag (key 3.8 ms) not added: the fitted lag is 1.2 ms and the held-out error falls on 4 of 5 runs "
             "(run_02 worse), exact test p = 0.16; the baseline's C1, eta sit at 1.78, 5.66 (key 0.28, 0.88) along the "
             "C1-eta-vc valley and take part of the lag"},
-    {"D13", "normal_load_mu (key) added, then a sensor_inertia of 12 g +- 3.5 g (jackknife) that the data do not have: "
-            "after the key's effect the residual is still 0.05 and the extra mass absorbs part of it "
-            "consistently over the runs"},
     {"D18", "stick_healing (key, healed strength 0.0115 of mu over 16 um) not added: dBIC -28 but the held-out error "
             "falls on too few runs (exact test p = 0.47)"},
 };
