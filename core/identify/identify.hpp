@@ -43,6 +43,10 @@ struct IdentifyRun {
     std::string file;
     SetupKind setup = SetupKind::Prescribed;
     bool validation = false;             // given with --validate-on: never fitted
+    // Samples before the first one were recorded and dropped (trimmed ramps or filter edges):
+    // the contact is loaded at the first sample, and the law starts from its measured force
+    // there instead of from rest (makeIdentifyRun sets it; false for a run given from its start).
+    bool cutFromRecording = false;
     std::vector<double> t_s;
     std::vector<double> slip_m;          // g
     std::vector<double> relVel_mps;      // V

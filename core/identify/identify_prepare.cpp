@@ -41,6 +41,7 @@ bool makeIdentifyRun(const CleanRun& c, SetupKind setup, IdentifyRun& out, std::
     IdentifyRun o;
     o.file = r.file;
     o.setup = setup;
+    o.cutFromRecording = b > 0;
     o.t_s = cut(Signal::Time);
     o.slip_m = cut(Signal::Slip);
     o.relVel_mps = cut(Signal::RelVel);

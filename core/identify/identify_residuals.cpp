@@ -135,10 +135,10 @@ ExtendedModel lawChannelModel(const Prepared& p, const ExtendedModel& m) {
 
 bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m, LawRun& out) {
     RunContext ctx{p.run->normalForce_N, p.run->slipBefore_m};
-    // A measured run is cut out of a longer recording (steady-amplitude trim): the contact is
-    // loaded at its first sample, so the law starts from the measured force there, not from
-    // rest, which would mispredict the first half-stroke by up to 2 μ t_N.
-    if (!p.F.empty()) ctx.initialForce_N = p.F.front();
+    // A run cut out of a longer recording (IdentifyRun::cutFromRecording) is loaded at its first
+    // sample: the law starts from the measured force there, not from rest, which would
+    // mispredict the first half-stroke by up to 2 μ t_N.
+    if (p.run->cutFromRecording && !p.F.empty()) ctx.initialForce_N = p.F.front();
     ExtendedTrace tr = simulateExtendedPrescribed(lawChannelModel(p, m), ctx, p.t, p.g, p.a.empty() ? nullptr : &p.a,
                                                   cx.opt->substeps);
     if (!tr.ok()) return false;
