@@ -29,7 +29,7 @@ struct RunContext {
     double normalForce_N = 6.2;          // t_N of the run [N]
     double accumulatedSlipStart_m = 0;   // slip already accumulated on the specimen (wear_drift) [m]
     // Force the contact carries at the start [N]; NaN: at rest (F = 0). A measured run cut out
-    // of a longer recording starts loaded (prescribed set-up: its first measured force).
+    // of a longer recording starts loaded: its first measured force (identify, both set-ups).
     double initialForce_N = std::numeric_limits<double>::quiet_NaN();
 };
 

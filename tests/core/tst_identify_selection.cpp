@@ -178,15 +178,13 @@ private slots:
         for (const char* n : {"m", "zeta", "viscous_damping.zeta", "sensor_inertia.mass_kg"}) QVERIFY2(!lawParameter(n), n);
     }
 
-    // A model that differs only in m, ζ, a viscous damping or a sensor mass may reuse another's law
-    // run: the residuals are bit for bit those of its own simulation, in both set-ups; a model
-    // with another law parameter is not (the test would see it).
     // The damper (session 17): its runs are cut out of longer recordings (steady-amplitude trim),
     // so each starts with the contact loaded. identify ran the law from rest, which mispredicted
     // every run's first half-stroke (ε_T must be loaded through 2 F/ε_T of slip first) and cost
-    // 0.05 of the damper's NRMSE (0.3147 against fit's 0.2656 on the same runs). The law now
-    // starts from the run's first measured force, in both set-ups. The model that made the data
-    // must then leave no residual from the first sample on, with and without a dead band.
+    // 0.05 of the damper's NRMSE (0.3147 against fit's 0.2656 on the same runs). A run cut out of
+    // a longer recording now starts the law from its first measured force, in both set-ups. The
+    // model that made the data must then leave no residual but α's transient, with and without
+    // a dead band.
     void aRunCutMidStrokeStartsLoaded() {
         IdentifyOptions opt;
         opt.substeps = 4;
@@ -227,10 +225,12 @@ private slots:
             QVERIFY2(first < 0.1, qPrintable(QString("play %1: largest residual over the first 0.1 s %2 of the force RMS")
                                                  .arg(play).arg(first)));
             QVERIFY2(later < 1e-6, qPrintable(QString("play %1: largest residual after 0.1 s %2").arg(play).arg(later)));
-
         }
     }
 
+    // A model that differs only in m, ζ, a viscous damping or a sensor mass may reuse another's law
+    // run: the residuals are bit for bit those of its own simulation, in both set-ups; a model
+    // with another law parameter is not (the test would see it).
     void sharedLawRunGivesIdenticalResiduals() {
         IdentifyOptions opt;
         Context cx;
