@@ -30,14 +30,10 @@ double ExtendedLaw::muEffective(const LawState& s, double forceSign, double tN) 
 LawState ExtendedLaw::initialState(const RunContext& ctx) const {
     LawState s;
     s.aux[0] = ctx.accumulatedSlipStart_m;
-    s.aux[2] = ctx.normalForce_N * muEffective(s, 1.0, ctx.normalForce_N);
-    if (std::isfinite(ctx.initialForce_N)) {
-        s.force_N = ctx.initialForce_N;
-        const double sg = s.force_N >= 0 ? 1.0 : -1.0;
-        s.aux[2] = ctx.normalForce_N * (muEffective(s, sg, ctx.normalForce_N) + K1(s.alpha));
-        // The play taken up on the side the force acts on (ε dz(w) = F), as segmentResiduals does.
-        if (fx.backlash) s.aux[3] = s.force_N / eps_N_per_m + sg * fx.backlash->halfWidth_m;
-    }
+    const bool loaded = std::isfinite(ctx.initialForce_N);
+    if (loaded) s.force_N = ctx.initialForce_N;
+    s.aux[2] = ctx.normalForce_N * muEffective(s, s.force_N >= 0 ? 1.0 : -1.0, ctx.normalForce_N);
+    if (loaded && fx.backlash) s.aux[3] = fx.backlash->loadedCoordinate(s.force_N, eps_N_per_m);
     return s;
 }
 

@@ -243,7 +243,6 @@ struct RunScore {
     double rms_m = 0.0;         // slider displacement RMS error (dynamics; else 0)
     double nrmseDisp = 0.0;
     double nrmse = 0.0;
-    double sse = 0.0, ssMeasured = 0.0;  // n NRMSE² and n (samples), for pooling
     bool ok = false;
     std::string message;
 };

@@ -88,12 +88,6 @@ RunScore scoreRun(const CleanRun& run, SetupKind setup, const ModelSpec& model, 
     } else {
         sc.nrmse = sc.nrmseForce;
     }
-    // Pooled as normalised squared error per sample in both set-ups: each run's error over its
-    // own measured RMS, as the fit's objective weighs it and identify's NRMSE counts it (so
-    // identify's "before" and fit's NRMSE are one quantity). Raw Σe²/ΣF² weighted the runs by
-    // their force level instead (damper: 0.271 against 0.266 for the same model).
-    sc.sse = sc.nrmse * sc.nrmse * n;
-    sc.ssMeasured = n;
     sc.ok = true;
     if (out) *out = std::move(p);
     return sc;
@@ -421,15 +415,19 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
         out.stderrWarning = "standard errors from the Jacobian only: with C1, eta and vc free the dynamics cost has several "
                             "minima along the steady-state curve's valley, and these errors are too small there (on the "
                             "synthetic D05 5-15x for C1, eta, vc, Dc and mu); use the jackknife over runs";
+    // Pooled as n_k NRMSE_k² over n_k in both set-ups: each run's error over its own measured
+    // RMS, as the fit's objective weighs it and identify's NRMSE counts it (so identify's
+    // "before" and fit's NRMSE are one quantity). Raw Σe²/ΣF² weighted the runs by their force
+    // level instead (damper: 0.271 against 0.266 for the same model).
     double sseF = 0, ssF = 0, sseV = 0, ssV = 0;
     for (const CleanRun& c : fitRuns) {
         RunScore s = scoreRun(c, st.setup, out.model, st.predict, "fit");
-        if (s.ok) { sseF += s.sse; ssF += s.ssMeasured; }
+        if (s.ok) { sseF += s.nrmse * s.nrmse * s.samples; ssF += s.samples; }
         out.runs.push_back(std::move(s));
     }
     for (const CleanRun& c : valRuns) {
         RunScore s = scoreRun(c, st.setup, out.model, st.predict, "validation");
-        if (s.ok) { sseV += s.sse; ssV += s.ssMeasured; }
+        if (s.ok) { sseV += s.nrmse * s.nrmse * s.samples; ssV += s.samples; }
         out.runs.push_back(std::move(s));
     }
     out.fitNrmse = ssF > 0 ? std::sqrt(sseF / ssF) : std::numeric_limits<double>::quiet_NaN();

@@ -86,8 +86,7 @@ bool segmentResiduals(const Context& cx, const Prepared& p, const ExtendedModel&
         L.force_N = sg * (y + m.law.eta_s_per_m * tN * av);
         L.aux[1] = 0.0;
         L.aux[2] = y;
-        if (m.effects.backlash)  // play taken up on the side the force acts on: ε dz(w) = F
-            L.aux[3] = L.force_N / law.epsT() + (L.force_N >= 0 ? 1.0 : -1.0) * m.effects.backlash->halfWidth_m;
+        if (m.effects.backlash) L.aux[3] = m.effects.backlash->loadedCoordinate(L.force_N, law.epsT());
         s.law = L;
         s.stuck = false;
         s.slipRate = av;

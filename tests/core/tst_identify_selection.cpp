@@ -258,8 +258,7 @@ private slots:
             if (setup == SetupKind::Prescribed) {
                 std::vector<double> r, pred;
                 QVERIFY(runResiduals(cx, p, b, 0.5, r, ss2, n2, &pred, nullptr, nullptr, false, &lawA));
-                const ExtendedTrace tr =
-                    simulateExtendedPrescribed(b, {run.normalForce_N, 0, run.cutFromRecording ? p.F.front() : NAN}, p.t, p.g, &p.a, opt.substeps);
+                const ExtendedTrace tr = simulateExtendedPrescribed(b, {run.normalForce_N, 0}, p.t, p.g, &p.a, opt.substeps);
                 QVERIFY(pred == tr.measuredForce_N);
             }
             // A different law: its residuals differ from the shared law run's.

@@ -19,6 +19,11 @@ struct Backlash {
         return a <= 0.0 ? 0.0 : (w > 0.0 ? a : -a);
     }
     bool inPlay(double w) const { return std::abs(w) <= halfWidth_m; }
+    // The coordinate w at which a contact of stiffness ε carries force F with the play taken up
+    // on the side F acts on (ε dz(w) = F): how a run or segment that starts loaded begins.
+    double loadedCoordinate(double force, double eps) const {
+        return force / eps + (force >= 0.0 ? halfWidth_m : -halfWidth_m);
+    }
 
     static EffectInfo info() {
         return {"backlash",
