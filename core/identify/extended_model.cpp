@@ -46,7 +46,9 @@ LawState ExtendedLaw::initialState(const RunContext& ctx) const {
 //   α_{n+1} = (α_n − C2 Δλ²/(D_c Δt)) / (1 + Δλ/D_c)                        (2), BE
 // bracketed by [0, a/ε] and solved by Newton safeguarded with bisection.
 // frictional_lag: the strength in Φ is the lagged Y_act (explicit exact update over the
-// step), so R is linear: Δλ = Φ_tr/(ε + η t_N/Δt). The consistent tangent is
+// step), so R is linear: Δλ = Φ_tr/(ε + η t_N/Δt). As τ → 0 this is the law with its strength
+// explicit in α, not the law without lag (tst_effects::frictionalLagVanishesAsTauGoesToZero,
+// docs/identify-results.md, session 18). The consistent tangent is
 // dF/dΔg = ε (1 + ε/R') with R' = dR/dΔλ < 0 (0 inside the backlash play).
 ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt, double tN, ExpCache* cache) const {
     ReturnMapResult res;
@@ -62,7 +64,7 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
     const double a = std::abs(trial);
     const double s = trial >= 0.0 ? 1.0 : -1.0;
     const double mu = muEffective(st, s, tN);
-    const double h = fx.stickHealing ? st.aux[1] : 0.0;
+    const double h = fx.stickHealing ? fx.stickHealing->strength(st.aux[1]) : 0.0;  // aux[1]: contact age θ
     double e0 = 0.0;  // exp(α_n/r), exactly as K1 computes it
     if (cache && st.alpha == cache->alpha) {
         e0 = cache->e;
@@ -77,7 +79,7 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
     if (phiTrial <= 0.0) {  // stick: elastic step
         res.state.force_N = trial;
         if (fx.backlash) res.state.aux[3] = wTrial;
-        if (fx.stickHealing) res.state.aux[1] = fx.stickHealing->healWhileStuck(h, dt);
+        if (fx.stickHealing) res.state.aux[1] = fx.stickHealing->ageWhileStuck(st.aux[1], dt);
         if (fx.frictionalLag) res.state.aux[2] = yAct;
         res.tangent_N_per_m = (fx.backlash && fx.backlash->inPlay(wTrial)) ? 0.0 : eps;
         // Inside or at the edge of the play F is not F_n + ε Δg: report "not stuck" so that
@@ -151,7 +153,7 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
     res.state.force_N = s * (a - eps * x);
     res.state.alpha = alpha;
     res.state.aux[0] = st.aux[0] + x;
-    if (fx.stickHealing) res.state.aux[1] = fx.stickHealing->eraseBySlip(h, x);
+    if (fx.stickHealing) res.state.aux[1] = fx.stickHealing->ageAfterSlip(st.aux[1], x, dt);
     if (fx.frictionalLag) res.state.aux[2] = yAct;
     if (fx.backlash) res.state.aux[3] = wTrial - s * x;
     res.tangent_N_per_m = (dR < 0.0) ? eps * (1.0 + eps / dR) : 0.0;
@@ -301,18 +303,17 @@ SlipPhasePrediction simulateSlipPhaseForce(const ExtendedModel& m, const RunCont
         const double sg = V[i] >= 0 ? 1.0 : -1.0;
         const bool slide = v >= vStick;
         const double mu = law.muEffective(s, sg, tN);
-        double h = fx.stickHealing ? s.aux[1] : 0.0;
         if (dt > 0) {
             if (slide) {
                 const double decay = std::exp(-v * dt / Dc);
                 s.alpha = -C2 * v + (s.alpha + C2 * v) * decay;
-                if (fx.stickHealing) h = fx.stickHealing->eraseBySlip(h, v * dt);
+                if (fx.stickHealing) s.aux[1] = fx.stickHealing->ageAfterSlip(s.aux[1], v * dt, dt);
                 s.aux[0] += v * dt;
             } else if (fx.stickHealing) {
-                h = fx.stickHealing->healWhileStuck(h, dt);
+                s.aux[1] = fx.stickHealing->ageWhileStuck(s.aux[1], dt);
             }
-            s.aux[1] = h;
         }
+        const double h = fx.stickHealing ? fx.stickHealing->strength(s.aux[1]) : 0.0;
         const double yLaw = tN * (mu + h + law.K1(s.alpha));
         if (fx.frictionalLag) s.aux[2] = dt > 0 ? fx.frictionalLag->lagged(s.aux[2], yLaw, dt) : s.aux[2];
         const double y = fx.frictionalLag ? s.aux[2] : yLaw;

@@ -35,7 +35,7 @@ struct RunContext {
 
 // An effect-aware friction law with the same concept as RateStateLaw (returnMap, epsT), so it
 // runs in detail::newmarkStep. LawState::aux holds:
-//   aux[0] accumulated slip s [m] (wear_drift), aux[1] healed extra strength h [-]
+//   aux[0] accumulated slip s [m] (wear_drift), aux[1] contact age θ [s]
 //   (stick_healing), aux[2] lagged strength Y_act [N] (frictional_lag), aux[3] elastic+play
 //   coordinate w = g − λ [m] (backlash).
 struct ExtendedLaw {

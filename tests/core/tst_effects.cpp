@@ -141,6 +141,11 @@ private slots:
         m.effects.directionAsymmetry = DirectionAsymmetry{0.05};
         QVERIFY(std::abs(plateau(m, 6.2, 1) - ss) < 2e-3);
         QVERIFY(std::abs(plateau(m, 6.2, -1) + (ss - 0.05)) < 2e-3);
+        m.effects.directionAsymmetry.reset();
+        // Dieterich ageing in steady sliding: θ = D_h/V adds b ln(1 + D_h/(V t_c)).
+        m.effects.stickHealing = StickHealing{0.02, 1e-3, 1e-4};
+        const double heal = 0.02 * std::log1p(1e-4 / (0.05 * 1e-3));
+        QVERIFY2(std::abs(plateau(m, 6.2, 1) - (ss + heal)) < 2e-3, qPrintable(QString::number(plateau(m, 6.2, 1) - ss)));
     }
     void wearDriftGrowsWithSlipDistance() {
         ExtendedModel m = baseModel();
@@ -154,7 +159,7 @@ private slots:
     }
     void stickHealingRaisesBreakawayAfterLongStick() {
         ExtendedModel m = baseModel();
-        m.effects.stickHealing = StickHealing{0.1, 0.05, 1e-4};
+        m.effects.stickHealing = StickHealing{0.02, 0.001, 1e-4};
         // Slide, stick for T, slide again: peak ratio after the stick.
         auto peakAfterStick = [&](double T) {
             std::vector<double> t, g;
@@ -169,7 +174,10 @@ private slots:
             return pk;
         };
         const double shortStick = peakAfterStick(0.005), longStick = peakAfterStick(0.5);
-        QVERIFY(longStick - shortStick > 0.06);  // Δμ (1 − e^{−10}) − Δμ (1 − e^{−0.1}) ≈ 0.09
+        // The age enters the stick at its sliding value D_h/V = 5 ms, so the long stick breaks
+        // away b ln((1 + 0.505/t_c)/(1 + 0.010/t_c)) = 0.02 ln(506/11) ≈ 0.077 higher.
+        QVERIFY2(std::abs((longStick - shortStick) - 0.02 * std::log(506.0 / 11.0)) < 0.01,
+                 qPrintable(QString::number(longStick - shortStick)));
     }
     void frictionalLagDelaysTheVelocityWeakening() {
         ExtendedModel m = baseModel();
@@ -189,6 +197,31 @@ private slots:
         QVERIFY(lag.contactForce_N[iStep] - plain.contactForce_N[iStep] > 0.05);
         // Long after (15 τ) both agree.
         QVERIFY(std::abs(lag.contactForce_N[iEnd] - plain.contactForce_N[iEnd]) < 1e-3);
+    }
+    // A vanishing lag should give the model without it at the step the loop uses (1 ms law
+    // steps), or a candidate fit can lower its error through the discretisation instead of a
+    // lag: with the strength held at its start-of-step value (explicit in α) τ = 1e-4 s changes
+    // D09's sum of squares at the answer key's parameters by 18 % (551 → 454). A known defect:
+    // the fix (a first-order-hold update, docs/identify-results.md, session 18) passes this
+    // test but makes tst_identify_contact::viscousDampingIsAbsorbedByEtaPrescribed add a lag
+    // (ΔBIC −10.02, τ = 3.3 ms), so it is not in yet.
+    void frictionalLagVanishesAsTauGoesToZero() {
+        ExtendedModel m = baseModel();
+        std::vector<double> t, g;
+        const double dt = 1e-3;
+        for (double tt = 0; tt < 1.0; tt += dt) { t.push_back(tt); g.push_back(3e-3 * std::sin(2 * M_PI * 2 * tt)); }
+        const auto plain = simulateExtendedPrescribed(m, {6.2, 0}, t, g, nullptr, 1);
+        double fmax = 0;
+        for (double f : plain.contactForce_N) fmax = std::max(fmax, std::abs(f));
+        for (double tau : {1e-6, 1e-8}) {
+            m.effects.frictionalLag = FrictionalLag{tau};
+            const auto lag = simulateExtendedPrescribed(m, {6.2, 0}, t, g, nullptr, 1);
+            double worst = 0;
+            for (size_t i = 0; i < t.size(); ++i)
+                worst = std::max(worst, std::abs(lag.contactForce_N[i] - plain.contactForce_N[i]));
+            QEXPECT_FAIL("", "frictional_lag is explicit in the law's state (known defect, see above)", Continue);
+            QVERIFY2(worst < 10 * tau / dt * fmax + 1e-9 * fmax, qPrintable(QString("tau %1: %2 of %3").arg(tau).arg(worst).arg(fmax)));
+        }
     }
     void backlashHoldsZeroForceAcrossThePlay() {
         ExtendedModel m = baseModel();

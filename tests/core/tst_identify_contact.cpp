@@ -35,7 +35,7 @@ class TestIdentifyContact : public QObject {
 private slots:
     void findsStickHealing() {
         auto m = synth::trueModel();
-        m.effects.stickHealing = StickHealing{0.08, 0.05, 2e-4};
+        m.effects.stickHealing = StickHealing{0.02, 0.005, 2e-4};
         expectFound(m, 11, "stick_healing");
     }
     void findsBacklash() {
@@ -61,7 +61,8 @@ private slots:
         const IdentifyResult r = identifyEffects(runs, synth::testOptions());
         QVERIFY2(r.ok, r.message.c_str());
         for (const auto& c : r.candidates)
-            qInfo("%s: dBIC %.2f fit NRMSE %.4f", c.name.c_str(), c.deltaBic, c.fitNrmse);
+            qInfo("%s: dBIC %.2f fit NRMSE %.4f, %s = %g", c.name.c_str(), c.deltaBic, c.fitNrmse,
+                  c.params.empty() ? "" : c.params.front().name.c_str(), c.params.empty() ? 0.0 : c.params.front().value);
         if (!r.effectsAdded.empty()) QCOMPARE(r.effectsAdded.front().name, std::string("viscous_damping"));
         double eta = -1;
         for (const auto& p : r.baseline)

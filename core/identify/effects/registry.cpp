@@ -38,7 +38,7 @@ std::vector<Entry> registry() {
     r.push_back(entry<WearDrift>(&EffectSet::wearDrift, [](const auto& v) { return WearDrift{v[0]}; },
                                  [](const auto& e) { return std::vector<double>{e.dmu_ds_per_m}; }));
     r.push_back(entry<StickHealing>(&EffectSet::stickHealing, [](const auto& v) { return StickHealing{v[0], v[1], v[2]}; },
-                                    [](const auto& e) { return std::vector<double>{e.dmu_static, e.tau_heal_s, e.Dh_m}; }));
+                                    [](const auto& e) { return std::vector<double>{e.b_heal, e.tc_s, e.Dh_m}; }));
     r.push_back(entry<Backlash>(&EffectSet::backlash, [](const auto& v) { return Backlash{v[0]}; },
                                 [](const auto& e) { return std::vector<double>{e.halfWidth_m}; }));
     r.push_back(entry<PreslidingCompliance>(&EffectSet::preslidingCompliance,
