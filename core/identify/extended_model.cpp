@@ -45,10 +45,11 @@ LawState ExtendedLaw::initialState(const RunContext& ctx) const {
 //   R(Δλ) = a − ε Δλ − Y(α_{n+1}(Δλ)) − η t_N Δλ/Δt = 0,
 //   α_{n+1} = (α_n − C2 Δλ²/(D_c Δt)) / (1 + Δλ/D_c)                        (2), BE
 // bracketed by [0, a/ε] and solved by Newton safeguarded with bisection.
-// frictional_lag: the strength in Φ is the lagged Y_act (explicit exact update over the
-// step), so R is linear: Δλ = Φ_tr/(ε + η t_N/Δt). As τ → 0 this is the law with its strength
-// explicit in α, not the law without lag (tst_effects::frictionalLagVanishesAsTauGoesToZero,
-// docs/identify-results.md, session 18). The consistent tangent is
+// frictional_lag: the strength is the lagged Y_act, updated exactly over the step with Y_law
+// linear in time (FrictionalLag::hold): Y_act,n+1 = Y_b + w Y_law(α_{n+1}), Y_b = E Y_act,n +
+// (q − E) Y_law,n. In R this is the law's own equation with t_N(μ_eff + h) → Y_b + w t_N(μ_eff + h)
+// and C1 → w C1, solved by the same Newton iteration; τ → 0 (w → 1, E → 0) is the law without
+// lag (tst_effects::frictionalLagVanishesAsTauGoesToZero). The consistent tangent is
 // dF/dΔg = ε (1 + ε/R') with R' = dR/dΔλ < 0 (0 inside the backlash play).
 ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt, double tN, ExpCache* cache) const {
     ReturnMapResult res;
@@ -73,14 +74,21 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
         if (cache) cache->alpha = st.alpha, cache->e = e0;
     }
     const double yLaw = tN * (mu + h + base.C1 * (e0 - 1.0));
-    const double yAct = fx.frictionalLag ? fx.frictionalLag->lagged(st.aux[2], yLaw, dt) : yLaw;
-    const double phiTrial = a - yAct;
+    // Strength = yBase + w Y_law(α): the bare law has yBase = 0, w = 1.
+    double yBase = 0.0, w = 1.0;
+    if (fx.frictionalLag) {
+        const FrictionalLag::Hold hd = fx.frictionalLag->hold(dt);
+        yBase = hd.E * st.aux[2] + (hd.q - hd.E) * yLaw;
+        w = hd.w;
+    }
+    const double yTrial = yBase + w * yLaw;  // α unchanged in a stick step
+    const double phiTrial = a - yTrial;
 
     if (phiTrial <= 0.0) {  // stick: elastic step
         res.state.force_N = trial;
         if (fx.backlash) res.state.aux[3] = wTrial;
         if (fx.stickHealing) res.state.aux[1] = fx.stickHealing->ageWhileStuck(st.aux[1], dt);
-        if (fx.frictionalLag) res.state.aux[2] = yAct;
+        if (fx.frictionalLag) res.state.aux[2] = yTrial;
         res.tangent_N_per_m = (fx.backlash && fx.backlash->inPlay(wTrial)) ? 0.0 : eps;
         // Inside or at the edge of the play F is not F_n + ε Δg: report "not stuck" so that
         // the Newmark step iterates with this force and tangent instead of its elastic predictor.
@@ -107,54 +115,48 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
     };
     double x = 0.0, alpha = st.alpha, dR = -(eps + visc);
     const double hi0 = a / eps;  // the force cannot change sign in a step
-    if (fx.frictionalLag) {
-        x = std::min(phiTrial / (eps + visc), hi0);
+    const double y0 = yBase + w * tN * (mu + h), c1 = w * base.C1;
+    double eAlpha = e0;  // exp(α/r) at the last evaluated α: the next step's exp(α_n/r)
+    auto eval = [&](double xx, double& R, double& dRx, double& al) {
         double da = 0;
-        alpha = alphaAt(x, da);
+        al = alphaAt(xx, da);
+        const double e = std::exp(al / base.r);  // as e0 forms it, so the cache below holds exactly e0
+        eAlpha = e;
+        R = a - eps * xx - y0 - tN * c1 * (e - 1.0) - visc * xx;
+        dRx = -eps - visc - tN * c1 * invR * e * da;
+    };
+    double lo = 0.0, hi = hi0, R = -1.0;
+    // R(Δλ) <= a - y0 + t_N c1 - (ε + η t_N/Δt) Δλ since K1 >= -C1: when that bound puts the
+    // root below a/ε, R(a/ε) < 0 and the force cannot reach zero in the step (no evaluation).
+    const double rootBound = (a - y0 + tN * c1) / (eps + visc);
+    if (!(c1 >= 0.0 && rootBound * (1.0 + 1e-9) < hi0)) eval(hi, R, dR, alpha);
+    if (R > 0.0) {  // slides to zero force within the step
+        x = hi;
     } else {
-        const double y0 = tN * (mu + h);
-        double eAlpha = 1.0;  // exp(α/r) at the last evaluated α: the next step's exp(α_n/r)
-        auto eval = [&](double xx, double& R, double& dRx, double& al) {
-            double da = 0;
-            al = alphaAt(xx, da);
-            const double e = std::exp(al / base.r);  // as e0 forms it, so the cache below holds exactly e0
-            eAlpha = e;
-            R = a - eps * xx - y0 - tN * base.C1 * (e - 1.0) - visc * xx;
-            dRx = -eps - visc - tN * base.C1 * invR * e * da;
-        };
-        double lo = 0.0, hi = hi0, R = -1.0;
-        // R(Δλ) <= a - y0 + t_N C1 - (ε + η t_N/Δt) Δλ since K1 >= -C1: when that bound puts the
-        // root below a/ε, R(a/ε) < 0 and the force cannot reach zero in the step (no evaluation).
-        const double rootBound = (a - y0 + tN * base.C1) / (eps + visc);
-        if (!(base.C1 >= 0.0 && rootBound * (1.0 + 1e-9) < hi0)) eval(hi, R, dR, alpha);
-        if (R > 0.0) {  // slides to zero force within the step
-            x = hi;
-        } else {
-            x = std::min(phiTrial / (eps + visc), hi);
-            const double ftol = 1e-12 * (a + tN);
-            bool ok = false;
-            int it = 0;
-            for (; it < 200; ++it) {
-                eval(x, R, dR, alpha);
-                if (std::abs(R) <= ftol) { ok = true; break; }
-                if (R > 0.0) lo = x; else hi = x;
-                double xn = (dR < 0.0) ? x - R / dR : 0.5 * (lo + hi);
-                if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);
-                if (hi - lo <= 1e-15 * hi0 + 1e-300) { x = xn; eval(x, R, dR, alpha); ok = true; break; }
-                x = xn;
-            }
-            res.iterations = it + 1;
-            res.converged = ok;
+        x = std::min(phiTrial / (eps + visc), hi);
+        const double ftol = 1e-12 * (a + tN);
+        bool ok = false;
+        int it = 0;
+        for (; it < 200; ++it) {
+            eval(x, R, dR, alpha);
+            if (std::abs(R) <= ftol) { ok = true; break; }
+            if (R > 0.0) lo = x; else hi = x;
+            double xn = (dR < 0.0) ? x - R / dR : 0.5 * (lo + hi);
+            if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);
+            if (hi - lo <= 1e-15 * hi0 + 1e-300) { x = xn; eval(x, R, dR, alpha); ok = true; break; }
+            x = xn;
         }
-        // α_{n+1} is the next step's α_n: hand its exponential on instead of recomputing it.
-        if (cache) cache->alpha = alpha, cache->e = eAlpha;
+        res.iterations = it + 1;
+        res.converged = ok;
     }
+    // α_{n+1} is the next step's α_n: hand its exponential on instead of recomputing it.
+    if (cache) cache->alpha = alpha, cache->e = eAlpha;
     res.slipIncrement_m = x;
     res.state.force_N = s * (a - eps * x);
     res.state.alpha = alpha;
     res.state.aux[0] = st.aux[0] + x;
     if (fx.stickHealing) res.state.aux[1] = fx.stickHealing->ageAfterSlip(st.aux[1], x, dt);
-    if (fx.frictionalLag) res.state.aux[2] = yAct;
+    if (fx.frictionalLag) res.state.aux[2] = y0 + tN * c1 * (eAlpha - 1.0);
     if (fx.backlash) res.state.aux[3] = wTrial - s * x;
     res.tangent_N_per_m = (dR < 0.0) ? eps * (1.0 + eps / dR) : 0.0;
     return res;
@@ -297,6 +299,7 @@ SlipPhasePrediction simulateSlipPhaseForce(const ExtendedModel& m, const RunCont
     const bool haveAcc = accel && accel->size() >= n;
     const double C2 = m.law.C2(), Dc = m.law.Dc_m;
     LawState s = law.initialState(ctx);
+    double yLawPrev = 0.0;  // Y_law at the previous sample (the lag's first-order hold)
     for (size_t i = 0; i < n; ++i) {
         const double dt = i > 0 ? t[i] - t[i - 1] : 0.0;
         const double v = std::abs(V[i]);
@@ -315,7 +318,8 @@ SlipPhasePrediction simulateSlipPhaseForce(const ExtendedModel& m, const RunCont
         }
         const double h = fx.stickHealing ? fx.stickHealing->strength(s.aux[1]) : 0.0;
         const double yLaw = tN * (mu + h + law.K1(s.alpha));
-        if (fx.frictionalLag) s.aux[2] = dt > 0 ? fx.frictionalLag->lagged(s.aux[2], yLaw, dt) : s.aux[2];
+        if (fx.frictionalLag && dt > 0) s.aux[2] = fx.frictionalLag->lagged(s.aux[2], yLawPrev, yLaw, dt);
+        yLawPrev = yLaw;
         const double y = fx.frictionalLag ? s.aux[2] : yLaw;
         if (slide) {
             out.sliding[i] = 1;

@@ -103,7 +103,8 @@ ExtendedTrace simulateExtendedDynamics(const ExtendedModel& m, const RunContext&
 //   F = sign V [Y_act + η t_N |V|] + m_s a,   Y = t_N (μ_eff + h + K1(α)),
 // with α updated exactly at constant |V| over each interval (Eq. 2 at λ̇ = |V|):
 //   α_{n+1} = −C2|V| + (α_n + C2|V|) exp(−|V| Δt/D_c),
-// healing h erased as exp(−|V|Δt/D_h), accumulated slip s += |V|Δt, Y_act lagged; while
+// contact age θ renewed over D_h, accumulated slip s += |V|Δt, Y_act lagged (first-order
+// hold of Y_law between samples); while
 // |V| < vStick the contact sticks (α frozen, h heals, Y_act follows), the force is set by the
 // rig and not predicted (`sliding` = 0). backlash and presliding_compliance act inside stick
 // and have no effect here. viscous_damping is a rig effect (not in this force).
