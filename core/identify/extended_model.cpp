@@ -27,6 +27,11 @@ double ExtendedLaw::muEffective(const LawState& s, double forceSign, double tN) 
     return mu;
 }
 
+double ExtendedLaw::lawStrength(const LawState& s, double forceSign, double tN) const {
+    const double h = fx.stickHealing ? fx.stickHealing->strength(s.aux[1]) : 0.0;  // aux[1]: contact age θ
+    return tN * (muEffective(s, forceSign, tN) + h + K1(s.alpha));
+}
+
 LawState ExtendedLaw::initialState(const RunContext& ctx) const {
     LawState s;
     s.aux[0] = ctx.accumulatedSlipStart_m;
@@ -317,7 +322,7 @@ SlipPhasePrediction simulateSlipPhaseForce(const ExtendedModel& m, const RunCont
             }
         }
         const double h = fx.stickHealing ? fx.stickHealing->strength(s.aux[1]) : 0.0;
-        const double yLaw = tN * (mu + h + law.K1(s.alpha));
+        const double yLaw = tN * (mu + h + law.K1(s.alpha));  // μ_eff at the interval's start, as returnMap holds it
         if (fx.frictionalLag && dt > 0) s.aux[2] = fx.frictionalLag->lagged(s.aux[2], yLawPrev, yLaw, dt);
         yLawPrev = yLaw;
         const double y = fx.frictionalLag ? s.aux[2] : yLaw;

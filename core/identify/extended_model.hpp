@@ -64,6 +64,10 @@ struct ExtendedLaw {
     double K1(double alpha) const;  // Eq. 1
     // μ with the load-, wear- and direction-dependent shifts for a force of sign `forceSign`.
     double muEffective(const LawState& s, double forceSign, double normalForce_N) const;
+    // The law's strength Y = t_N (μ_eff + h(θ) + K1(α)) in state s (before any lag): the
+    // force the contact carries in quasi-static sliding. returnMap forms the same sum with its
+    // cached exponential.
+    double lawStrength(const LawState& s, double forceSign, double normalForce_N) const;
     // Contact at rest at the start of a run: F = 0, α = 0, strength at its law value. With
     // ctx.initialForce_N: that force, with the lagged strength and the play to match. α stays 0:
     // it is not measured, and a sliding state inferred from the signs of F and V is wrong for a

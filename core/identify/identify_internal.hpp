@@ -28,7 +28,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 struct Prepared {
     const IdentifyRun* run = nullptr;
     std::vector<double> t, g, V, F, a, x, xd;
-    // The law channel's input: the recorded slip (and acceleration) at every lawEvery-th
+    // The law channel's input (prescribed runs, chooseLawInput): the recorded slip (and acceleration) at every lawEvery-th
     // original sample between the decimated ones, so that the law is driven through the
     // measured slip rather than a line between decimated samples (which cuts the corners of a
     // dwell and, through ε_T, changes the stick force). Empty when lawEvery == 1.

@@ -83,8 +83,7 @@ bool segmentResiduals(const Context& cx, const Prepared& p, const ExtendedModel&
         LawState L = law.initialState(RunContext{tN, run.slipBefore_m + p.cumSlip[i0]});
         L.alpha = -C2 * av;
         L.aux[1] = av > 0 && m.effects.stickHealing ? m.effects.stickHealing->Dh_m / av : 0.0;  // steady age D_h/V
-        const double heal = m.effects.stickHealing ? m.effects.stickHealing->strength(L.aux[1]) : 0.0;
-        const double y = tN * (law.muEffective(L, sg, tN) + heal + law.K1(L.alpha));
+        const double y = law.lawStrength(L, sg, tN);
         L.force_N = sg * (y + m.law.eta_s_per_m * tN * av);
         L.aux[2] = y;
         if (m.effects.backlash) L.aux[3] = m.effects.backlash->loadedCoordinate(L.force_N, law.epsT());

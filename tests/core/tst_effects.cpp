@@ -147,6 +147,24 @@ private slots:
         const double heal = 0.02 * std::log1p(1e-4 / (0.05 * 1e-3));
         QVERIFY2(std::abs(plateau(m, 6.2, 1) - (ss + heal)) < 2e-3, qPrintable(QString::number(plateau(m, 6.2, 1) - ss)));
     }
+    // The strength is the sum of its parts: t_N (μ + load shift + b ln(1 + θ/t_c) + C1 (e^{α/r} − 1)),
+    // and a stuck returnMap step that just reaches it sits on Φ = 0.
+    void lawStrengthIsTheSumOfItsParts() {
+        ExtendedModel m = baseModel();
+        m.effects.normalLoadMu = NormalLoadMu{-0.01};
+        m.effects.stickHealing = StickHealing{0.02, 1e-3, 1e-4};
+        const ExtendedLaw law = ExtendedLaw::make(m);
+        LawState s;
+        s.alpha = -0.3;
+        s.aux[1] = 0.05;
+        const double tN = 8.2;
+        const double y = tN * (0.25 - 0.01 * (8.2 - 6.2) + 0.02 * std::log1p(0.05 / 1e-3) + 0.25 * std::expm1(-0.3));
+        QVERIFY(std::abs(law.lawStrength(s, 1.0, tN) - y) < 1e-12 * y);
+        s.force_N = y * (1 - 1e-9);
+        const ReturnMapResult r = law.returnMap(s, 0.0, 1e-12, tN);
+        QVERIFY(r.stuck);
+        QCOMPARE(r.slipIncrement_m, 0.0);
+    }
     void wearDriftGrowsWithSlipDistance() {
         ExtendedModel m = baseModel();
         m.effects.wearDrift = WearDrift{0.2};  // +0.2 per metre

@@ -251,6 +251,15 @@ private slots:
                 QCOMPARE(p.gL[c.every], base.slip_m[c.dec]);
             }
         }
+        {  // the spring–mass set-up keeps the line between decimated samples
+            const IdentifyRun dyn = syntheticRun(SetupKind::Dynamics);
+            Prepared p;
+            for (size_t i = 0; i < dyn.t_s.size(); i += 2) p.t.push_back(dyn.t_s[i]);
+            chooseLawInput(dyn, 2, 2, p);
+            QCOMPARE(p.lawEvery, size_t{1});
+            QCOMPARE(p.lawSubsteps, 2);
+            QVERIFY(p.tL.empty());
+        }
         // A clipped sine (dwells) made at 1 kHz, one law step per sample, fitted decimated by 2:
         // the model that made it leaves no residual.
         ExtendedModel m;
