@@ -28,13 +28,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 struct Prepared {
     const IdentifyRun* run = nullptr;
     std::vector<double> t, g, V, F, a, x, xd;
-    // The law channel's input (prescribed runs, chooseLawInput): the recorded slip (and acceleration) at every lawEvery-th
-    // original sample between the decimated ones, so that the law is driven through the
-    // measured slip rather than a line between decimated samples (which cuts the corners of a
-    // dwell and, through ε_T, changes the stick force). Empty when lawEvery == 1.
-    std::vector<double> tL, gL, aL;
-    size_t lawEvery = 1;   // law input samples per decimated sample
-    int lawSubsteps = 1;   // law steps per law input sample
     double invRmsF = 1.0;
     dsp::Sos predictionFilter;  // the run's cleaning filters at the decimated rate (those below its Nyquist)
     // The prediction y as the cleaned measurement would show it: F + filter(mask·(y − F)), the
@@ -181,9 +174,6 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
                                            std::map<std::string, double> vals, const std::vector<size_t>& idx);
 
 void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& opt, Prepared& p);
-// The law channel's input for a run decimated by `dec` with `substeps` law steps per decimated
-// sample (Prepared::tL, gL, aL, lawEvery, lawSubsteps); p's decimated samples must be set.
-void chooseLawInput(const IdentifyRun& r, size_t dec, int substeps, Prepared& p);
 
 double bic(double ss, double n, double neffCap, int p);
 // Whether a restart from a held-out refit's point (IdentifyOptions::heldOutRestart; baseline or

@@ -161,33 +161,6 @@ dsp::Sos predictionFilterAt(const FilterSettings& fs, double rate_Hz) {
     return out;
 }
 
-// The law channel steps `substeps` times per decimated sample. Where the decimation allows, those
-// steps are taken at recorded samples: k law input samples per decimated one, k the smallest
-// divisor of the decimation that is >= substeps (the whole decimation, with substeps spread over
-// it, when none is). Same number of law steps as linear interpolation, none of its corner error.
-// Prescribed runs only: in the spring–mass set-up the slip u − x is the difference of two noisy
-// records, and driving the law through every one of its samples made D13 add a sensor mass next to
-// its load dependence (ΔBIC −92, held-out p = 0.031; cause not found, docs/identify-results.md,
-// session 19), so there the law keeps the line between decimated samples.
-void chooseLawInput(const IdentifyRun& r, size_t dec, int substeps, Prepared& p) {
-    const size_t sub = static_cast<size_t>(std::max(substeps, 1));
-    p.lawEvery = 1;
-    p.lawSubsteps = static_cast<int>(sub);
-    if (dec <= 1 || r.setup != SetupKind::Prescribed) return;
-    size_t k = dec;
-    for (size_t d = sub; d < dec; ++d)
-        if (dec % d == 0) { k = d; break; }
-    p.lawEvery = k;
-    p.lawSubsteps = static_cast<int>((sub + k - 1) / k);
-    const size_t stride = dec / k;
-    const size_t last = (p.size() - 1) * dec;  // the last decimated sample's index
-    for (size_t i = 0; i <= last; i += stride) {
-        p.tL.push_back(r.t_s[i]);
-        p.gL.push_back(r.slip_m[i]);
-        if (!r.accel_mps2.empty()) p.aL.push_back(r.accel_mps2[i]);
-    }
-}
-
 // Checks the runs, sets their accumulated slip, chooses the decimation and prepares every run
 // (decimated signals, weights, prediction filter, segments). False with `why` on bad input.
 bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, Context& cx, int& decimation,
@@ -244,7 +217,6 @@ bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, 
                 p.xd.push_back(r.sliderVel_mps[i]);
             }
         }
-        chooseLawInput(r, dec, opt.substeps, p);
         if (r.filtered && p.size() > 16) p.predictionFilter = predictionFilterAt(r.filters, 1.0 / (p.t[1] - p.t[0]));
         if (r.setup == SetupKind::Dynamics) prepareSegments(r, dec, opt, p);
         cx.runs.push_back(std::move(p));

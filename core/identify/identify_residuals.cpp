@@ -132,31 +132,15 @@ ExtendedModel lawChannelModel(const Prepared& p, const ExtendedModel& m) {
 
 }  // namespace
 
-bool simulateLawRun(const Context& /*cx: the steps come from p*/, const Prepared& p, const ExtendedModel& m, LawRun& out) {
+bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m, LawRun& out) {
     RunContext ctx{p.run->normalForce_N, p.run->slipBefore_m};
     // A run cut out of a longer recording (IdentifyRun::cutFromRecording) is loaded at its first
     // sample: the law starts from the measured force there, not from rest, which would
     // mispredict the first half-stroke by up to 2 μ t_N.
     if (p.run->cutFromRecording && !p.F.empty()) ctx.initialForce_N = p.F.front();
-    const bool fine = p.lawEvery > 1;
-    const std::vector<double>& t = fine ? p.tL : p.t;
-    const std::vector<double>& g = fine ? p.gL : p.g;
-    const std::vector<double>& a = fine ? p.aL : p.a;
-    ExtendedTrace tr =
-        simulateExtendedPrescribed(lawChannelModel(p, m), ctx, t, g, a.empty() ? nullptr : &a, p.lawSubsteps);
+    ExtendedTrace tr = simulateExtendedPrescribed(lawChannelModel(p, m), ctx, p.t, p.g, p.a.empty() ? nullptr : &p.a,
+                                                  cx.opt->substeps);
     if (!tr.ok()) return false;
-    if (fine) {  // back to the decimated samples
-        const size_t n = p.size();
-        for (size_t i = 0; i < n; ++i) {
-            const size_t j = i * p.lawEvery;
-            tr.contactForce_N[i] = tr.contactForce_N[j];
-            tr.relVel_mps[i] = tr.relVel_mps[j];
-            tr.sliderAccel_mps2[i] = tr.sliderAccel_mps2[j];
-        }
-        tr.contactForce_N.resize(n);
-        tr.relVel_mps.resize(n);
-        tr.sliderAccel_mps2.resize(n);
-    }
     out.contactForce_N = std::move(tr.contactForce_N);
     out.relVel_mps = std::move(tr.relVel_mps);
     out.accel_mps2 = std::move(tr.sliderAccel_mps2);

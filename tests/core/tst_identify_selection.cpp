@@ -4,7 +4,6 @@
 // run starts the law from.
 #include <QtTest/QtTest>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -59,8 +58,7 @@ IdentifyRun syntheticRun(SetupKind setup) {
     return r;
 }
 
-// Every sample, `substeps` law steps per sample.
-Prepared prepared(const IdentifyRun& r, int substeps) {
+Prepared prepared(const IdentifyRun& r) {
     Prepared p;
     p.run = &r;
     p.t = r.t_s;
@@ -70,7 +68,6 @@ Prepared prepared(const IdentifyRun& r, int substeps) {
     p.a = r.accel_mps2;
     p.x = r.slider_m;
     p.xd = r.sliderVel_mps;
-    chooseLawInput(r, 1, substeps, p);
     return p;
 }
 
@@ -214,7 +211,7 @@ private slots:
             run.force_N = tail(tr.measuredForce_N);
             run.cutFromRecording = true;
             QVERIFY(std::abs(run.force_N.front()) > 0.9 * m.law.mu * 6.2);  // loaded and sliding
-            const Prepared p = prepared(run, opt.substeps);
+            const Prepared p = prepared(run);
             std::vector<double> r;
             double ss = 0, n = 0;
             QVERIFY(runResiduals(cx, p, m, NAN, r, ss, n, nullptr, nullptr, nullptr, false));
@@ -231,60 +228,6 @@ private slots:
         }
     }
 
-    // The law channel of a decimated run is driven through recorded slip samples, never a line
-    // between decimated ones (session 19): with dwells at the turning points, a line over 2 ms
-    // cuts the corner and, through ε_T, changes the stick force; the model that made the data
-    // then left a residual (tst_identify_contact::viscousDampingIsAbsorbedByEtaPrescribed).
-    void decimatedLawChannelIsDrivenByRecordedSlip() {
-        const IdentifyRun base = syntheticRun(SetupKind::Prescribed);
-        struct Case { size_t dec; int sub; size_t every; int lawSub; };
-        for (const Case c : {Case{1, 2, 1, 2}, Case{2, 2, 2, 1}, Case{3, 2, 3, 1}, Case{8, 2, 2, 1}, Case{4, 8, 4, 2},
-                             Case{6, 4, 6, 1}}) {
-            Prepared p;
-            for (size_t i = 0; i < base.t_s.size(); i += c.dec) p.t.push_back(base.t_s[i]);
-            chooseLawInput(base, c.dec, c.sub, p);
-            QCOMPARE(p.lawEvery, c.every);
-            QCOMPARE(p.lawSubsteps, c.lawSub);
-            if (c.every > 1) {
-                QCOMPARE(p.tL.size(), (p.t.size() - 1) * c.every + 1);
-                QCOMPARE(p.tL.back(), p.t.back());
-                QCOMPARE(p.gL[c.every], base.slip_m[c.dec]);
-            }
-        }
-        {  // the spring–mass set-up keeps the line between decimated samples
-            const IdentifyRun dyn = syntheticRun(SetupKind::Dynamics);
-            Prepared p;
-            for (size_t i = 0; i < dyn.t_s.size(); i += 2) p.t.push_back(dyn.t_s[i]);
-            chooseLawInput(dyn, 2, 2, p);
-            QCOMPARE(p.lawEvery, size_t{1});
-            QCOMPARE(p.lawSubsteps, 2);
-            QVERIFY(p.tL.empty());
-        }
-        // A clipped sine (dwells) made at 1 kHz, one law step per sample, fitted decimated by 2:
-        // the model that made it leaves no residual.
-        ExtendedModel m;
-        m.law.mu = 0.30; m.law.C1 = 0.20; m.law.eta_s_per_m = 0.8; m.law.vc_mps = 0.1; m.law.Dc_m = 20e-6;
-        m.law.epsT_N_per_m = 1e6;
-        m.tNref_N = 6.2;
-        std::vector<IdentifyRun> runs{base};
-        IdentifyRun& r = runs.front();
-        for (size_t i = 0; i < r.t_s.size(); ++i) r.slip_m[i] = 1e-3 * std::clamp(1.4 * std::sin(2 * M_PI * 3 * r.t_s[i]), -1.0, 1.0);
-        r.accel_mps2.clear();
-        r.force_N = simulateExtendedPrescribed(m, {6.2, 0}, r.t_s, r.slip_m, nullptr, 1).contactForce_N;
-        IdentifyOptions opt;
-        opt.decimate = 2;
-        opt.substeps = 2;
-        Context cx;
-        int dec = 0;
-        std::string why;
-        QVERIFY2(prepareContext(runs, opt, cx, dec, why), why.c_str());
-        QCOMPARE(dec, 2);
-        std::vector<double> res;
-        double ss = 0, n = 0;
-        QVERIFY(runResiduals(cx, cx.runs.front(), m, NAN, res, ss, n, nullptr, nullptr, nullptr, false));
-        QVERIFY2(ss < 1e-20, qPrintable(QString("sum of squares at the generating model %1").arg(ss)));
-    }
-
     // A model that differs only in m, ζ, a viscous damping or a sensor mass may reuse another's law
     // run: the residuals are bit for bit those of its own simulation, in both set-ups; a model
     // with another law parameter is not (the test would see it).
@@ -294,7 +237,7 @@ private slots:
         cx.opt = &opt;
         for (SetupKind setup : {SetupKind::Prescribed, SetupKind::Dynamics}) {
             const IdentifyRun run = syntheticRun(setup);
-            const Prepared p = prepared(run, opt.substeps);
+            const Prepared p = prepared(run);
             ExtendedModel a;
             a.law.mu = 0.25; a.law.C1 = 0.2; a.law.eta_s_per_m = 0.6; a.law.Dc_m = 2e-5; a.law.vc_mps = 0.1;
             a.law.epsT_N_per_m = 5e4;

@@ -45,10 +45,9 @@ std::set<std::string> answerEffects(const std::string& set) {
 
 // Measured with the code of this commit (docs/identify-results.md, "all 18 sets").
 const std::map<std::string, const char*> kKnownMiss = {
-    {"D09", "frictional_lag (key 3.8 ms) not added: its fit ends on the lower bound tau = 0.1 ms (dBIC -30, not credited), "
-            "where the lag's update, explicit in the law's state, differs from the law without it; the baseline's C1, eta sit "
-            "at 1.78, 5.66 (key 0.28, 0.88) along the C1-eta-vc valley. With a lag that vanishes as tau -> 0 it fits 2.5 ms, "
-            "dBIC -69, but the held-out error falls on 4 of 5 runs only (p = 0.125; docs/identify-results.md, session 18)"},
+    {"D09", "frictional_lag (key 3.8 ms) not added: with the lag's exact first-order-hold update (session 19) its candidate "
+            "gets dBIC -69 and a held-out error lower pooled (0.0582 vs 0.0637), but lower on 4 of the 5 held-out runs only "
+            "(in session 18, run_02 at 6 Hz predicted worse): exact sign-flip test p = 0.125 (docs/identify-results.md, sessions 18 and 19)"},
     {"D18", "stick_healing (key: Dieterich ageing, b = 0.0115 of mu, t_c = 1.6 ms, D_h = 17 um) not added: fitted b = 0.046, "
             "t_c = 47 ms, dBIC -28, held-out error lower pooled (0.0389 vs 0.0397) but not over enough of the 5 runs "
             "(exact test p = 0.156)"},
