@@ -104,6 +104,7 @@ Setters<IdentifyRequest> identifySetters() {
         o("max_segments", &IdentifyOptions::maxSegmentsPerRun), o("seed", &IdentifyOptions::seed),
         o("confounded_vif", &IdentifyOptions::confoundedVif), o("held_out_restart", &IdentifyOptions::heldOutRestart),
         o("forward_jacobian", &IdentifyOptions::forwardJacobian),
+        o("exact_state_step", &IdentifyOptions::exactStateStep), o("recorded_step_slip", &IdentifyOptions::recordedStepSlip),
         fn<R>("self_test", [](R& r, py::handle v) { r.selfTest = v.cast<bool>(); }),
         fn<R>("self_test_replicas", [](R& r, py::handle v) { r.selfTestReplicas = v.cast<int>(); }),
         fn<R>("self_test_levels", [](R& r, py::handle v) {

@@ -119,6 +119,12 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--decimate", o->req.options.decimate, "use every n-th sample")->capture_default_str();
     cmd->add_option("--substeps", o->req.options.substeps, "prescribed: law steps per used sample")->capture_default_str();
     cmd->add_option("--multistarts", o->req.options.multistarts, "starting points per fit")->capture_default_str();
+    cmd->add_flag("--exact-state-step,!--backward-euler-state-step", o->req.options.exactStateStep,
+                  "the law's state alpha advanced exactly for a slip rate constant over each step (default), or by the "
+                  "paper's backward Euler, whose relaxation is far off once a step slips more than D_c")->capture_default_str();
+    cmd->add_flag("--recorded-step-slip,!--linear-step-slip", o->req.options.recordedStepSlip,
+                  "decimated prescribed runs: the law's slip between used samples read off the recorded slip (default), or the line "
+                  "between used samples, which cuts the corners of every stick")->capture_default_str();
     cmd->add_flag("--forward-jacobian,!--central-jacobian", o->req.options.forwardJacobian,
                   "the solver's Jacobian by forward differences (default: p residual runs per Jacobian) or by central "
                   "differences (2p, slower); standard errors and leave-one-run-out refits use central differences either way")->capture_default_str();

@@ -12,6 +12,7 @@ ExtendedLaw ExtendedLaw::make(const ExtendedModel& m) {
     l.base = m.law;
     l.fx = m.effects;
     l.tNref_N = m.tNref_N;
+    l.stateStep = m.stateStep;
     l.eps_N_per_m = m.effects.preslidingCompliance ? m.effects.preslidingCompliance->effectiveStiffness(m.law.epsT_N_per_m)
                                                    : m.law.epsT_N_per_m;
     return l;
@@ -110,9 +111,16 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
         k.invDc = 1.0 / base.Dc_m;
         k.c2q = base.C2() * k.invDc / dt;
         k.invR = 1.0 / base.r;
+        k.c2dt = base.C2() / dt;
     }
-    const double visc = k.visc, invDc = k.invDc, c2q = k.c2q, invR = k.invR;
+    const double visc = k.visc, invDc = k.invDc, c2q = k.c2q, invR = k.invR, c2dt = k.c2dt;
+    const bool constantRate = stateStep == StateStep::ConstantRate;
     auto alphaAt = [&](double x, double& dalpha) {
+        if (constantRate) {  // α₁ = −C2 V + (α₀ + C2 V) e^{−Δλ/D_c}, V = Δλ/Δt (StateStep)
+            const double E = std::exp(-x * invDc), ss = c2dt * x, excess = (st.alpha + ss) * E;
+            dalpha = c2dt * (E - 1.0) - excess * invDc;
+            return excess - ss;
+        }
         const double den = 1.0 + x * invDc;
         const double al = (st.alpha - c2q * x * x) / den;
         dalpha = (-2.0 * c2q * x - al * invDc) / den;
@@ -184,12 +192,13 @@ std::vector<double> derivative(const std::vector<double>& t, const std::vector<d
 
 ExtendedTrace simulateExtendedPrescribed(const ExtendedModel& m, const RunContext& ctx, const std::vector<double>& t,
                                          const std::vector<double>& g, const std::vector<double>* accel, int substeps,
-                                         const RunControl& ctl) {
+                                         const RunControl& ctl, const std::vector<double>* stepSlip) {
     ExtendedTrace tr;
     const size_t n = t.size();
-    if (n < 2 || g.size() != n || (accel && accel->size() != n) || substeps < 1) {
+    if (n < 2 || g.size() != n || (accel && accel->size() != n) || substeps < 1 ||
+        (stepSlip && stepSlip->size() != (n - 1) * static_cast<size_t>(substeps))) {
         tr.status = RunStatus::Failed;
-        tr.message = "prescribed history: need >= 2 samples, equal lengths and substeps >= 1";
+        tr.message = "prescribed history: need >= 2 samples, equal lengths, substeps >= 1 and (n - 1) x substeps step slips";
         return tr;
     }
     const ExtendedLaw law = ExtendedLaw::make(m);
@@ -216,8 +225,10 @@ ExtendedTrace simulateExtendedPrescribed(const ExtendedModel& m, const RunContex
                 return tr;
             }
             bool stuck = true;
+            const double* gs = stepSlip ? stepSlip->data() + (i - 1) * static_cast<size_t>(substeps) : nullptr;
             for (int k = 0; k < substeps; ++k) {
-                const ReturnMapResult r = law.returnMap(s, dg, dt, tN, &cache);
+                const double dgk = gs ? gs[k] - (k > 0 ? gs[k - 1] : g[i - 1]) : dg;
+                const ReturnMapResult r = law.returnMap(s, dgk, dt, tN, &cache);
                 if (!r.converged || !std::isfinite(r.state.force_N)) {
                     tr.status = RunStatus::Failed;
                     tr.message = "return mapping failed at t = " + std::to_string(t[i]) + " s";

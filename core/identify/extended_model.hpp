@@ -15,6 +15,18 @@
 
 namespace stickslip::identify {
 
+// How a return-map step advances the state α of Eq. 2, dα/dt = −(λ̇/D_c)(α + C2 λ̇), over a
+// slip increment Δλ in Δt:
+//   BackwardEuler  α₁ (1 + Δλ/D_c) = α₀ − C2 Δλ²/(D_c Δt): the paper's discretisation (and the
+//                  app's simulator); first order, its relaxation factor 1/(1 + Δλ/D_c) is far
+//                  from e^{−Δλ/D_c} once a step slips more than D_c;
+//   ConstantRate   α₁ = −C2 V + (α₀ + C2 V) e^{−Δλ/D_c}, V = Δλ/Δt: exact for a slip rate
+//                  constant over the step (as frictional_lag's and stick_healing's updates are).
+// Both have the same steady state α = −C2 V (Eq. 5). A fit samples the law at the data's rate
+// (1–2 ms steps, where Δλ/D_c reaches 2–5 in fast slip): there BackwardEuler's error in the
+// state's transients is taken up by biased C1, η, v_c, D_c and hides or imitates effects.
+enum class StateStep { BackwardEuler, ConstantRate };
+
 // Constant model: baseline law and rig, the effects switched on, and the reference load of
 // normal_load_mu.
 struct ExtendedModel {
@@ -22,6 +34,7 @@ struct ExtendedModel {
     RigParams rig;            // dynamics set-up: t_N, k, m*, c (c replaced when viscous_damping is on)
     EffectSet effects;
     double tNref_N = 6.2;     // t_N,ref of normal_load_mu [N]
+    StateStep stateStep = StateStep::BackwardEuler;
 };
 
 // What differs from run to run of one dataset.
@@ -43,6 +56,7 @@ struct ExtendedLaw {
     EffectSet fx;
     double tNref_N = 6.2;
     double eps_N_per_m = 1e6;  // ε_T, or ε_T in series with presliding_compliance
+    StateStep stateStep = StateStep::BackwardEuler;
 
     static ExtendedLaw make(const ExtendedModel& m);
 
@@ -53,7 +67,7 @@ struct ExtendedLaw {
         double alpha = std::numeric_limits<double>::quiet_NaN();
         double e = 1.0;
         double dt = std::numeric_limits<double>::quiet_NaN(), tN = std::numeric_limits<double>::quiet_NaN();
-        double visc = 0, invDc = 0, c2q = 0, invR = 0;
+        double visc = 0, invDc = 0, c2q = 0, invR = 0, c2dt = 0;
     };
     // Backward-Euler return mapping over one step (derivation in extended_model.cpp).
     ReturnMapResult returnMap(const LawState& s, double dg_m, double dt_s, double normalForce_N) const {
@@ -92,9 +106,13 @@ struct ExtendedTrace {
 // Prescribed slip g(t) at the samples t (strictly increasing), `substeps` law steps per
 // interval (g linear in between). V for the dashpot is the central difference of g; the
 // sensed acceleration is `accel` when given (same length), else the second difference of g.
+// `stepSlip_m`, when given ((n − 1)·substeps values), is the slip at the end of every law step
+// (step k of interval i at index (i − 1)·substeps + k − 1, the last of each interval equal to
+// slip_m[i]): the input between samples taken from a finer record instead of the line.
 ExtendedTrace simulateExtendedPrescribed(const ExtendedModel& m, const RunContext& ctx, const std::vector<double>& t_s,
                                          const std::vector<double>& slip_m, const std::vector<double>* accel_mps2,
-                                         int substeps, const RunControl& ctl = {});
+                                         int substeps, const RunControl& ctl = {},
+                                         const std::vector<double>* stepSlip_m = nullptr);
 
 // Spring–mass rig driven by `stage` from rest at t0 with step dt_s; records every
 // `outputEvery` steps (the start state included). The contact's t_N is ctx.normalForce_N.

@@ -479,6 +479,8 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         }
         res.decimation = dec;
         res.jacobian = opt.forwardJacobian ? "forward" : "central";
+        res.stateStep = opt.exactStateStep ? "constant_rate" : "backward_euler";
+        res.lawInput = opt.recordedStepSlip && dec > 1 && !cx.anyDynamics ? "recorded_slip" : "linear";
         res.setup = cx.anyDynamics ? "dynamics" : "prescribed";
     }
     Loop L(cx, opt, res);

@@ -130,6 +130,12 @@ struct IdentifyOptions {
     int decimate = 0;                // use every n-th sample in the fits; 0: auto (prescribed ≥ 128
                                      // samples per forcing period, dynamics ≈ 500 Hz)
     int substeps = 2;                // law steps per sample (prescribed)
+    // The law's state α advanced exactly for a slip rate constant over each step
+    // (StateStep::ConstantRate, extended_model.hpp) instead of by backward Euler.
+    bool exactStateStep = true;
+    // Prescribed runs: the law's input between decimated samples read off the recorded slip at
+    // its step ends (Prepared::stepSlip) instead of the line between decimated samples.
+    bool recordedStepSlip = true;
     double stickVelocity_mps = 5e-3; // |V| below this counts as stuck (dynamics channel, diagnostics)
     int multistarts = 2;
     // The solver's Jacobian while it iterates (fit.hpp, JacobianKind): forward differences by
@@ -245,6 +251,8 @@ struct IdentifyResult {
     long fits = 0;
     int decimation = 1;       // samples used: every decimation-th
     std::string jacobian = "forward";  // the solvers' Jacobian while iterating (IdentifyOptions::forwardJacobian)
+    std::string stateStep = "constant_rate";  // IdentifyOptions::exactStateStep: "constant_rate" or "backward_euler"
+    std::string lawInput = "recorded_slip";   // IdentifyOptions::recordedStepSlip: "recorded_slip" or "linear"
     double slipEpisodes = 0;  // independent units of the BIC (slip episodes in the fit runs)
     double tauInt = 1;        // τ_int of the baseline's residual (samples); n_eff = min(n/τ_int, slipEpisodes)
     double heldOutAlpha = 0.05, identifiabilityAlpha = 0.05;  // the levels used (IdentifyOptions)

@@ -28,6 +28,12 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 struct Prepared {
     const IdentifyRun* run = nullptr;
     std::vector<double> t, g, V, F, a, x, xd;
+    // The law channel's slip at the end of each of its steps (substeps per decimated interval),
+    // read off the recorded slip rather than the line between decimated samples: that line cuts
+    // the corners of every stick (dwell) by up to a decimated interval, and a frictional lag of
+    // about that size absorbs the cut. Prescribed runs only (identify_prepare.cpp says why); empty
+    // when the run is not decimated.
+    std::vector<double> stepSlip;
     double invRmsF = 1.0;
     dsp::Sos predictionFilter;  // the run's cleaning filters at the decimated rate (those below its Nyquist)
     // The prediction y as the cleaned measurement would show it: F + filter(mask·(y − F)), the
@@ -174,6 +180,9 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
                                            std::map<std::string, double> vals, const std::vector<size_t>& idx);
 
 void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& opt, Prepared& p);
+// Prepared::stepSlip of a run decimated by `dec` (p's decimated samples set): the recorded slip,
+// linear between recorded samples, at the ends of the `substeps` law steps of every interval.
+void prepareStepSlip(const IdentifyRun& r, size_t dec, int substeps, Prepared& p);
 
 double bic(double ss, double n, double neffCap, int p);
 // Whether a restart from a held-out refit's point (IdentifyOptions::heldOutRestart; baseline or

@@ -161,6 +161,23 @@ dsp::Sos predictionFilterAt(const FilterSettings& fs, double rate_Hz) {
     return out;
 }
 
+void prepareStepSlip(const IdentifyRun& r, size_t dec, int substeps, Prepared& p) {
+    p.stepSlip.clear();
+    if (dec <= 1 || substeps < 1 || p.size() < 2) return;
+    const size_t S = static_cast<size_t>(substeps);
+    p.stepSlip.reserve((p.size() - 1) * S);
+    for (size_t i = 1; i < p.size(); ++i) {
+        const size_t j0 = (i - 1) * dec;  // recorded index of decimated sample i − 1
+        for (size_t k = 1; k <= S; ++k) {
+            if (k == S) { p.stepSlip.push_back(p.g[i]); continue; }
+            const double q = static_cast<double>(k * dec) / static_cast<double>(S);  // recorded intervals from j0
+            const size_t j = std::min(j0 + static_cast<size_t>(q), r.slip_m.size() - 2);
+            const double w = q - static_cast<double>(j - j0);
+            p.stepSlip.push_back(r.slip_m[j] + w * (r.slip_m[j + 1] - r.slip_m[j]));
+        }
+    }
+}
+
 // Checks the runs, sets their accumulated slip, chooses the decimation and prepares every run
 // (decimated signals, weights, prediction filter, segments). False with `why` on bad input.
 bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, Context& cx, int& decimation,
@@ -217,6 +234,12 @@ bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, 
                 p.xd.push_back(r.sliderVel_mps[i]);
             }
         }
+        // Prescribed runs only. Their law channel compares every sample, dwells included, where the
+        // line's corner cut changes the stick force through ε_T. In the spring–mass set-up the law
+        // channel compares sliding samples only and g = u − x carries two sensors' noise; driven
+        // through it there, D09's lag lost its held-out test (p 0.0625, session 20) and session 19
+        // saw D13 gain a false sensor mass (docs/identify-results.md).
+        if (opt.recordedStepSlip && r.setup == SetupKind::Prescribed) prepareStepSlip(r, dec, opt.substeps, p);
         if (r.filtered && p.size() > 16) p.predictionFilter = predictionFilterAt(r.filters, 1.0 / (p.t[1] - p.t[0]));
         if (r.setup == SetupKind::Dynamics) prepareSegments(r, dec, opt, p);
         cx.runs.push_back(std::move(p));

@@ -28,6 +28,7 @@ ExtendedModel buildModel(const Context& cx, const Spec& spec, const std::map<std
     m.law = cx.opt->start;
     for (const auto& [k, v] : vals) applyLaw(m.law, k, v);
     m.tNref_N = cx.tNref;
+    m.stateStep = cx.opt->exactStateStep ? StateStep::ConstantRate : StateStep::BackwardEuler;
     for (const std::string& e : spec.effects) {
         EffectInfo info;
         findEffect(e, info);
@@ -139,7 +140,7 @@ bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m
     // mispredict the first half-stroke by up to 2 μ t_N.
     if (p.run->cutFromRecording && !p.F.empty()) ctx.initialForce_N = p.F.front();
     ExtendedTrace tr = simulateExtendedPrescribed(lawChannelModel(p, m), ctx, p.t, p.g, p.a.empty() ? nullptr : &p.a,
-                                                  cx.opt->substeps);
+                                                  cx.opt->substeps, {}, p.stepSlip.empty() ? nullptr : &p.stepSlip);
     if (!tr.ok()) return false;
     out.contactForce_N = std::move(tr.contactForce_N);
     out.relVel_mps = std::move(tr.relVel_mps);

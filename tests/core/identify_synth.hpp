@@ -19,6 +19,9 @@ inline ExtendedModel trueModel() {
     ExtendedModel m;
     m.law.mu = 0.30; m.law.C1 = 0.20; m.law.eta_s_per_m = 0.8; m.law.vc_mps = 0.1; m.law.Dc_m = 20e-6;
     m.law.epsT_N_per_m = 1e6;
+    // The state advanced exactly per step (extended_model.hpp, StateStep): the runs stand for the
+    // law itself, not for backward Euler's error at their 0.25 ms steps.
+    m.stateStep = StateStep::ConstantRate;
     return m;
 }
 

@@ -90,9 +90,11 @@ private slots:
     // check) is an optimisation only: with and without it every state is bit for bit the same,
     // with each effect that changes the return map and with all of them, through stick and slip.
     void cachedReturnMapIsBitIdentical() {
+        for (const StateStep step : {StateStep::BackwardEuler, StateStep::ConstantRate})
         for (const char* name : {"", "normal_load_mu", "direction_asymmetry", "wear_drift", "stick_healing", "backlash",
                                  "presliding_compliance", "frictional_lag", "all"}) {
             ExtendedModel m = baseModel();
+            m.stateStep = step;
             for (const EffectInfo& e : effectCatalogue()) {
                 if (std::string(name) != "all" && e.name != name) continue;
                 std::vector<double> v;
@@ -121,6 +123,72 @@ private slots:
             }
             QVERIFY2(stuck > 200 && slid > 1000, qPrintable(QString("%1: %2 stuck, %3 slid").arg(name).arg(stuck).arg(slid)));
         }
+    }
+    // StateStep::ConstantRate advances α exactly for a slip rate constant over the step. Along a
+    // slip history made of constant-rate pieces (0.02 → 0.08 → 0.03 m/s, the steps 2 ms, so
+    // Δλ/D_c reaches 8) its α at every step end equals the closed form of Eq. 2 for that piece to
+    // round-off, while backward Euler's relaxation factor 1/(1 + Δλ/D_c) leaves an error of
+    // order one; both reach the steady state α = −C2 V (Eq. 5).
+    void constantRateStateStepIsExactPerPiece() {
+        ExtendedModel m = baseModel();
+        m.law.eta_s_per_m = 0.0;  // the rate of slip then equals the prescribed one once sliding
+        const double dt = 2e-3, Dc = m.law.Dc_m, C2 = m.law.C2();
+        std::vector<double> t = {0.0}, g = {0.0}, V;
+        for (double v : {0.02, 0.08, 0.03})
+            for (int i = 0; i < 40; ++i) { t.push_back(t.back() + dt); g.push_back(g.back() + v * dt); V.push_back(v); }
+        double worstExact = 0, worstBe = 0;
+        for (const StateStep step : {StateStep::ConstantRate, StateStep::BackwardEuler}) {
+            m.stateStep = step;
+            const ExtendedLaw law = ExtendedLaw::make(m);
+            LawState s = law.initialState({6.2, 0});
+            long compared = 0;
+            for (size_t i = 1; i < t.size(); ++i) {
+                const double a0 = s.alpha;
+                const ReturnMapResult r = law.returnMap(s, g[i] - g[i - 1], dt, 6.2);
+                QVERIFY(r.converged);
+                s = r.state;
+                if (r.stuck || r.slipIncrement_m <= 0.0) continue;
+                // Eq. 2 at the step's own slip rate Δλ/Δt, from α₀, over Δλ.
+                const double rate = r.slipIncrement_m / dt, x = r.slipIncrement_m / Dc;
+                const double exact = -C2 * rate + (a0 + C2 * rate) * std::exp(-x);
+                const double err = std::abs(s.alpha - exact) / (C2 * rate);
+                (step == StateStep::ConstantRate ? worstExact : worstBe) = std::max(step == StateStep::ConstantRate ? worstExact : worstBe, err);
+                ++compared;
+            }
+            QVERIFY(compared > 100);
+            QVERIFY2(std::abs(s.alpha + C2 * V.back()) < 1e-6 * C2 * V.back(), qPrintable(QString::number(s.alpha)));
+        }
+        qInfo("alpha error / C2 V: constant rate %.2e, backward Euler %.2e", worstExact, worstBe);
+        QVERIFY(worstExact < 1e-10);
+        QVERIFY(worstBe > 0.1);
+    }
+    // Both steps converge to the same solution of the law as the step shrinks, and on a coarse
+    // step the exact state update is the closer one (force along a sine slip, against 1 µs steps).
+    void stateStepsConvergeToTheSameLaw() {
+        ExtendedModel m = baseModel();
+        auto force = [&](StateStep step, double dt) {
+            m.stateStep = step;
+            std::vector<double> t, g;
+            const double w = 2 * M_PI * 3;
+            for (double tt = 0; tt <= 0.5 + 1e-12; tt += dt) { t.push_back(tt); g.push_back(2e-3 * std::sin(w * tt)); }
+            const auto tr = simulateExtendedPrescribed(m, {6.2, 0}, t, g, nullptr, 1);
+            std::vector<double> out;  // every 10 ms
+            const size_t every = static_cast<size_t>(std::lround(1e-2 / dt));
+            for (size_t i = 0; i < tr.contactForce_N.size(); i += every) out.push_back(tr.contactForce_N[i]);
+            return out;
+        };
+        const std::vector<double> ref = force(StateStep::ConstantRate, 1e-6), refBe = force(StateStep::BackwardEuler, 1e-6);
+        auto dist = [](const std::vector<double>& a, const std::vector<double>& b) {
+            double e = 0;
+            for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) e = std::max(e, std::abs(a[i] - b[i]));
+            return e;
+        };
+        const double limits = dist(ref, refBe);
+        const double exactCoarse = dist(force(StateStep::ConstantRate, 1e-3), ref);
+        const double beCoarse = dist(force(StateStep::BackwardEuler, 1e-3), ref);
+        qInfo("max |F - F_ref| [N]: 1 us exact vs BE %.2e; 1 ms: exact %.3e, BE %.3e", limits, exactCoarse, beCoarse);
+        QVERIFY(limits < 1e-2);
+        QVERIFY(exactCoarse < beCoarse);
     }
     void steadySlidingMatchesEq5AndLoadAndDirectionShifts() {
         ExtendedModel m = baseModel();

@@ -4,6 +4,7 @@
 // run starts the law from.
 #include <QtTest/QtTest>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -226,6 +227,59 @@ private slots:
                                                  .arg(play).arg(first)));
             QVERIFY2(later < 1e-6, qPrintable(QString("play %1: largest residual after 0.1 s %2").arg(play).arg(later)));
         }
+    }
+
+    // A decimated run drives the law through its recorded slip: with decimation 4 and 2 law steps
+    // per used sample, the steps end on every second recorded sample, so the law run equals the
+    // one along the recorded slip at half the rate (to round-off in Δt), dwells' corners
+    // included; the line between used samples, the old input, cuts them and differs.
+    void decimatedRunIsDrivenThroughRecordedSlip() {
+        IdentifyRun r = syntheticRun(SetupKind::Prescribed);
+        for (size_t i = 0; i < r.t_s.size(); ++i) {  // dwells at the turning points
+            const double s = 1.4 * std::sin(2 * M_PI * 3 * r.t_s[i]);
+            r.slip_m[i] = 1e-3 * std::clamp(s, -1.0, 1.0);
+        }
+        IdentifyOptions opt;
+        opt.decimate = 4;
+        opt.substeps = 2;
+        std::vector<IdentifyRun> runs = {r, r};
+        runs[1].file = "second";
+        Context cx;
+        int dec = 0;
+        std::string why;
+        QVERIFY2(prepareContext(runs, opt, cx, dec, why), why.c_str());
+        QCOMPARE(dec, 4);
+        const Prepared& p = cx.runs[0];
+        QCOMPARE(p.stepSlip.size(), (p.size() - 1) * 2);
+        for (size_t i = 1; i < p.size(); ++i) {
+            QCOMPARE(p.stepSlip[2 * (i - 1)], runs[0].slip_m[4 * (i - 1) + 2]);
+            QCOMPARE(p.stepSlip[2 * (i - 1) + 1], p.g[i]);
+        }
+        ExtendedModel m;
+        m.law.mu = 0.25; m.law.C1 = 0.2; m.law.eta_s_per_m = 0.6; m.law.Dc_m = 2e-5; m.law.vc_mps = 0.1;
+        m.law.epsT_N_per_m = 5e4;
+        LawRun law;
+        QVERIFY(simulateLawRun(cx, p, m, law));
+        std::vector<double> t2, g2;
+        for (size_t i = 0; i < runs[0].t_s.size(); i += 2) {
+            t2.push_back(runs[0].t_s[i]);
+            g2.push_back(runs[0].slip_m[i]);
+        }
+        const ExtendedTrace half = simulateExtendedPrescribed(m, {r.normalForce_N, 0}, t2, g2, nullptr, 1);
+        const ExtendedTrace line = simulateExtendedPrescribed(m, {r.normalForce_N, 0}, p.t, p.g, nullptr, 2);
+        double worst = 0, lineWorst = 0;
+        for (size_t i = 0; i < p.size(); ++i) {
+            worst = std::max(worst, std::abs(law.contactForce_N[i] - half.contactForce_N[2 * i]));
+            lineWorst = std::max(lineWorst, std::abs(line.contactForce_N[i] - half.contactForce_N[2 * i]));
+        }
+        qInfo("largest force difference to the half-rate recorded drive: %.2e N (line between used samples: %.2e N)", worst,
+              lineWorst);
+        QVERIFY(worst < 1e-9);
+        QVERIFY(lineWorst > 1e-3);
+        opt.recordedStepSlip = false;
+        Context lin;
+        QVERIFY2(prepareContext(runs, opt, lin, dec, why), why.c_str());
+        QVERIFY(lin.runs[0].stepSlip.empty());
     }
 
     // A model that differs only in m, ζ, a viscous damping or a sensor mass may reuse another's law

@@ -111,10 +111,11 @@ private slots:
     }
     // The self-test's verdict for a stated size agrees with the full loop: a 10 ms lag is found
     // by both; at 0.1 ms the self-test sees nothing, and the loop adds nothing to the same runs
-    // without a lag. (On runs made with a 0.1 ms lag the loop adds a 3 ms lag at ΔBIC −10.1,
-    // and −9.5 without any lag: the runs are made with 0.25 ms law steps and fitted with 1 ms
-    // steps, a model error of the loop's own numerics that a lag partly absorbs and that
-    // replicas made with those numerics cannot contain — docs/identify-results.md.)
+    // without a lag. (The runs dwell at the turning points and the loop uses every second
+    // sample. While its law was driven by the line between used samples, which cuts each dwell's
+    // corners, a 3 ms lag absorbed the cut on runs without any lag: ΔBIC −8.4, and −15.2 with
+    // the exact state step, which then added it. Driven through the recorded slip
+    // (Prepared::stepSlip) the lag gains nothing, ΔBIC +3.7 — docs/identify-results.md, session 20.)
     void agreesWithTheFullLoop() {
         for (const double tau : {1e-2, 1e-4}) {
             auto m = synth::trueModel();

@@ -45,9 +45,6 @@ std::set<std::string> answerEffects(const std::string& set) {
 
 // Measured with the code of this commit (docs/identify-results.md, "all 18 sets").
 const std::map<std::string, const char*> kKnownMiss = {
-    {"D09", "frictional_lag (key 3.8 ms) not added: with the lag's exact first-order-hold update (session 19) its candidate "
-            "gets dBIC -69 and a held-out error lower pooled (0.0582 vs 0.0637), but lower on 4 of the 5 held-out runs only "
-            "(in session 18, run_02 at 6 Hz predicted worse): exact sign-flip test p = 0.125 (docs/identify-results.md, sessions 18 and 19)"},
     {"D18", "stick_healing (key: Dieterich ageing, b = 0.0115 of mu, t_c = 1.6 ms, D_h = 17 um) not added: fitted b = 0.046, "
             "t_c = 47 ms, dBIC -28, held-out error lower pooled (0.0389 vs 0.0397) but not over enough of the 5 runs "
             "(exact test p = 0.156)"},
