@@ -50,6 +50,7 @@ LawState ExtendedLaw::initialState(const RunContext& ctx) const {
 //   Φ_tr = a − Y(α_n); stick if Φ_tr ≤ 0. Otherwise Δλ > 0 solves
 //   R(Δλ) = a − ε Δλ − Y(α_{n+1}(Δλ)) − η t_N Δλ/Δt = 0,
 //   α_{n+1} = (α_n − C2 Δλ²/(D_c Δt)) / (1 + Δλ/D_c)                        (2), BE
+//   or, StateStep::ConstantRate, α_{n+1} = −C2 V + (α_n + C2 V) e^{−Δλ/D_c}, V = Δλ/Δt,
 // bracketed by [0, a/ε] and solved by Newton safeguarded with bisection.
 // frictional_lag: the strength is the lagged Y_act, updated exactly over the step with Y_law
 // linear in time (FrictionalLag::hold): Y_act,n+1 = Y_b + w Y_law(α_{n+1}), Y_b = E Y_act,n +

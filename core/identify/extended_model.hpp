@@ -69,7 +69,8 @@ struct ExtendedLaw {
         double dt = std::numeric_limits<double>::quiet_NaN(), tN = std::numeric_limits<double>::quiet_NaN();
         double visc = 0, invDc = 0, c2q = 0, invR = 0, c2dt = 0;
     };
-    // Backward-Euler return mapping over one step (derivation in extended_model.cpp).
+    // Return mapping over one step: backward Euler in the flow, the state α per stateStep
+    // (derivation in extended_model.cpp).
     ReturnMapResult returnMap(const LawState& s, double dg_m, double dt_s, double normalForce_N) const {
         return returnMap(s, dg_m, dt_s, normalForce_N, nullptr);
     }
