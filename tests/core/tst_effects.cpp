@@ -141,6 +141,7 @@ private slots:
             m.stateStep = step;
             const ExtendedLaw law = ExtendedLaw::make(m);
             LawState s = law.initialState({6.2, 0});
+            double& worst = step == StateStep::ConstantRate ? worstExact : worstBe;
             long compared = 0;
             for (size_t i = 1; i < t.size(); ++i) {
                 const double a0 = s.alpha;
@@ -152,7 +153,7 @@ private slots:
                 const double rate = r.slipIncrement_m / dt, x = r.slipIncrement_m / Dc;
                 const double exact = -C2 * rate + (a0 + C2 * rate) * std::exp(-x);
                 const double err = std::abs(s.alpha - exact) / (C2 * rate);
-                (step == StateStep::ConstantRate ? worstExact : worstBe) = std::max(step == StateStep::ConstantRate ? worstExact : worstBe, err);
+                worst = std::max(worst, err);
                 ++compared;
             }
             QVERIFY(compared > 100);
