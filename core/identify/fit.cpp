@@ -482,6 +482,15 @@ FitResult fitLeastSquares(const FitProblem& prob) {
         if (!(d(static_cast<Eigen::Index>(k)) > 0.0)) dead.push_back(res.freeNames[k]);
     const Eigen::Index P = static_cast<Eigen::Index>(p);
     res.correlation.assign(p * p, std::numeric_limits<double>::quiet_NaN());
+    {
+        // A parameter without effect keeps a zero row and column (pairCorrelation holds it).
+        Eigen::VectorXd s(P);
+        for (Eigen::Index k = 0; k < P; ++k) s(k) = d(k) > 0.0 ? 1.0 / std::sqrt(d(k)) : 0.0;
+        res.scaledNormal.resize(p * p);
+        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(res.scaledNormal.data(), P, P) =
+            s.asDiagonal() * JtJ * s.asDiagonal();
+        res.conditionLimit = prob.conditionLimit;
+    }
     if (!dead.empty()) {
         res.identifiable = false;
         res.conditionNumber = std::numeric_limits<double>::infinity();
@@ -530,6 +539,45 @@ FitResult fitLeastSquares(const FitProblem& prob) {
     if (cancelled) res.message = "cancelled (best result so far)";
     res.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return res;
+}
+
+double pairCorrelation(const FitResult& fit, size_t i, size_t j) {
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    const size_t p = fit.freeNames.size();
+    if (i >= p || j >= p) return kNaN;
+    if (fit.identifiable && fit.correlation.size() == p * p) return fit.correlation[i * p + j];
+    if (fit.scaledNormal.size() != p * p || !(fit.conditionLimit > 0)) return kNaN;
+    if (i == j) return 1.0;
+    const Eigen::Index P = static_cast<Eigen::Index>(p);
+    const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> A(fit.scaledNormal.data(), P, P);
+    std::vector<Eigen::Index> rest;
+    for (Eigen::Index k = 0; k < P; ++k)
+        if (k != static_cast<Eigen::Index>(i) && k != static_cast<Eigen::Index>(j)) rest.push_back(k);
+    const Eigen::Index pair[2] = {static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)};
+    Eigen::Matrix2d S;
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) S(a, b) = A(pair[a], pair[b]);
+    const Eigen::Index R = static_cast<Eigen::Index>(rest.size());
+    if (R > 0) {
+        Eigen::MatrixXd Aoo(R, R), Aop(R, 2);
+        for (Eigen::Index a = 0; a < R; ++a) {
+            for (Eigen::Index b = 0; b < R; ++b) Aoo(a, b) = A(rest[a], rest[b]);
+            for (int b = 0; b < 2; ++b) Aop(a, b) = A(rest[a], pair[b]);
+        }
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Aoo);
+        const Eigen::VectorXd ev = es.eigenvalues();
+        const double cut = ev(R - 1) / fit.conditionLimit;
+        Eigen::VectorXd inv = Eigen::VectorXd::Zero(R);
+        for (Eigen::Index k = 0; k < R; ++k)
+            if (ev(k) > cut) inv(k) = 1.0 / ev(k);
+        const Eigen::MatrixXd W = es.eigenvectors().transpose() * Aop;
+        S -= W.transpose() * inv.asDiagonal() * W;
+    }
+    // S is the pair's information with the others profiled; its inverse's correlation is
+    // −S₁₂/√(S₁₁S₂₂). A diagonal at round-off of the unit diagonal: determined by the others alone.
+    const double floor = 1.0 / fit.conditionLimit;
+    if (!(S(0, 0) > floor) || !(S(1, 1) > floor)) return kNaN;
+    return std::clamp(-S(0, 1) / std::sqrt(S(0, 0) * S(1, 1)), -1.0, 1.0);
 }
 
 std::vector<double> logGrid(double lower, double upper, int points) {

@@ -122,6 +122,11 @@ struct FitResult {
     bool identifiable = false;              // JᵀJ well conditioned at the optimum
     std::string identifiabilityMessage;     // e.g. "not identifiable: cond(JᵀJ) = 3e14; nearly dependent: eta, vc"
     double conditionNumber = 0.0;           // of the unit-diagonal-scaled JᵀJ
+    // That unit-diagonal-scaled JᵀJ of the free parameters (row-major, nFree²; a zero row and
+    // column for a parameter without effect on the residuals) and the limit it was judged
+    // against: what pairCorrelation needs when the fit is not identifiable.
+    std::vector<double> scaledNormal;
+    double conditionLimit = 0.0;
 
     double cost = 0.0;                      // ½ Σ ρ(r²) at the optimum (Ceres convention)
     double rms = 0.0;                       // sqrt(Σ r² / m), plain residuals
@@ -142,6 +147,16 @@ struct FitResult {
 
 // Solve the problem. Never throws; failure and cancellation come back as a status.
 FitResult fitLeastSquares(const FitProblem& problem);
+
+// Correlation of the estimates of free parameters i and j (indices into freeNames).
+// Identifiable fit: the correlation matrix's entry. Otherwise the pair's correlation when the
+// other parameters may absorb only what the data determine: the Schur complement of the pair in
+// the scaled JᵀJ, the others' block pseudo-inverted with eigenvalues below λ_max/conditionLimit
+// dropped (a direction the data do not determine is held, not traded). This equals the
+// correlation matrix's entry when the fit is identifiable, and tends to ±1 when the pair itself
+// is the undetermined direction. NaN when either parameter is determined by the others alone
+// or has no effect, or without a scaled JᵀJ.
+double pairCorrelation(const FitResult& fit, size_t i, size_t j);
 
 // Standard physical bounds and scale for a named model parameter (keys as in params.hpp
 // setParam: mu C1 eta Dc vc epsT k m c tN). `setup` widens μ/η/C1 for the prescribed

@@ -480,7 +480,10 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         res.decimation = dec;
         res.jacobian = opt.forwardJacobian ? "forward" : "central";
         res.stateStep = opt.exactStateStep ? "constant_rate" : "backward_euler";
-        res.lawInput = opt.recordedStepSlip && dec > 1 && !cx.anyDynamics ? "recorded_slip" : "linear";
+        // What the runs were prepared with (prepareContext decides per run), not a second rule.
+        res.lawInput = std::any_of(cx.runs.begin(), cx.runs.end(), [](const Prepared& p) { return !p.stepSlip.empty(); })
+                           ? "recorded_slip"
+                           : "linear";
         res.setup = cx.anyDynamics ? "dynamics" : "prescribed";
     }
     Loop L(cx, opt, res);

@@ -195,7 +195,8 @@ bool restartWorthIt(double bicGain, double bicMargin);
 void creditRestartGain(CandidateScore& sc, double ssFirst, double ssRefit);
 // Correlation of effect e's size parameter (params[0]) with every other free parameter of the
 // fit that is not e's own, keyed by the parameter's name, or by the effect's name for another
-// effect's size parameter (empty when e's size is not free or the fit has no correlation matrix).
+// effect's size parameter (empty when e's size is not free). pairCorrelation: also defined
+// when the fit is not identifiable, with the undetermined directions held.
 std::map<std::string, double> sizeCorrelations(const FitResult& fit, const std::string& e);
 // The added effect whose size trades off with the candidate's in their joint fit: the one with
 // the largest variance inflation 1/(1 − r²) of the two sizes above maxVif (empty: none).

@@ -30,14 +30,14 @@ std::map<std::string, double> sizeCorrelations(const FitResult& fit, const std::
     };
     const size_t n = fit.freeNames.size();
     const auto own = std::find(fit.freeNames.begin(), fit.freeNames.end(), sizeName(e));
-    if (own == fit.freeNames.end() || fit.correlation.size() != n * n) return out;
+    if (own == fit.freeNames.end()) return out;
     const size_t i = static_cast<size_t>(own - fit.freeNames.begin());
     for (size_t j = 0; j < n; ++j) {
         const std::string& name = fit.freeNames[j];
         if (j == i || name.rfind(e + ".", 0) == 0) continue;
         const size_t dot = name.find('.');
         const std::string key = dot != std::string::npos && sizeName(name.substr(0, dot)) == name ? name.substr(0, dot) : name;
-        out[key] = fit.correlation[i * n + j];
+        out[key] = pairCorrelation(fit, i, j);
     }
     return out;
 }

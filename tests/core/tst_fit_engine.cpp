@@ -83,6 +83,43 @@ private slots:
         QVERIFY(std::abs(res.value("a") * res.value("b") - 6.0) < 1e-3);
     }
 
+    // a and b are seen only as their product, c and d are correlated but determined: the fit is
+    // not identifiable, yet the (c, d) pair's correlation is defined with the undetermined a·b
+    // direction held, and equals the correlation of the identifiable fit with b fixed; the
+    // undetermined pair itself trades off completely.
+    void pairCorrelationHoldsTheUndeterminedDirection() {
+        std::vector<double> t, y;
+        for (int i = 0; i < 80; ++i) {
+            t.push_back(i * 0.05);
+            const double g = std::sin(t.back()), h = std::sin(t.back()) + 0.3 * std::cos(t.back());
+            y.push_back(6.0 * t.back() + 0.5 * g - 0.4 * h + 0.01 * std::sin(37.0 * i));
+        }
+        auto problem = [&](bool bFree) {
+            FitProblem p;
+            p.parameters = {{"a", 1.0, 0.1, 10.0, true, ParamScale::Log}, {"b", 2.0, 0.1, 10.0, bFree, ParamScale::Log},
+                            {"c", 0.0, -5.0, 5.0, true, ParamScale::Linear}, {"d", 0.0, -5.0, 5.0, true, ParamScale::Linear}};
+            p.residualCount = t.size();
+            p.residuals = [&](const std::vector<double>& v, std::vector<double>& r) {
+                for (size_t i = 0; i < t.size(); ++i)
+                    r[i] = v[0] * v[1] * t[i] + v[2] * std::sin(t[i]) + v[3] * (std::sin(t[i]) + 0.3 * std::cos(t[i])) - y[i];
+                return true;
+            };
+            return p;
+        };
+        const FitResult all = fitLeastSquares(problem(true)), held = fitLeastSquares(problem(false));
+        QVERIFY(all.ok() && held.ok());
+        QVERIFY(!all.identifiable);
+        QVERIFY(held.identifiable);
+        QVERIFY(std::isnan(all.correlation[2 * 4 + 3]));  // the matrix itself stays undefined
+        const double rcd = pairCorrelation(all, 2, 3), rHeld = held.correlation[1 * 3 + 2];
+        qInfo("corr(c, d): %.9f with a.b held; %.9f with b fixed", rcd, rHeld);
+        QVERIFY(std::abs(rcd) > 0.9);
+        QVERIFY(std::abs(rcd - rHeld) < 1e-6);
+        QVERIFY(std::abs(pairCorrelation(all, 0, 1) + 1.0) < 1e-6);  // ln a + ln b is what is seen
+        QCOMPARE(pairCorrelation(held, 1, 2), held.correlation[1 * 3 + 2]);  // identifiable: the matrix
+        QVERIFY(std::isnan(pairCorrelation(all, 0, 9)));
+    }
+
     // A fixed parameter is passed through, has zero standard error and is not in the correlation.
     void fixedParametersStayFixed() {
         FitProblem p;

@@ -27,6 +27,10 @@ def test_identify_equals_cli_report(cli, damper, tmp_path):
     assert got["ok"] is True
     assert strip_keys(got) == strip_keys(want)
     assert got["selection"]["jacobian"] == "forward"
+    # Prescribed runs used every `decimation`-th sample: the law is driven through the recorded slip.
+    sel = got["selection"]
+    assert sel["state_step"] == "constant_rate"
+    assert sel["law_input"] == ("recorded_slip" if sel["decimation"] > 1 else "linear")
 
 
 def test_identify_central_jacobian_equals_cli_report(cli, damper, tmp_path):
