@@ -86,6 +86,13 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
         for (const std::string& c : e.confoundedWith)
             std::cout << "confounded: " << c << " trades off with " << e.name << " (not added; " << e.name
                       << "'s size may stand for both)\n";
+    std::map<std::string, const CandidateScore*> last;  // each candidate's latest round
+    for (const CandidateScore& c : res.candidates) last[c.name] = &c;
+    for (const auto& [name, c] : last)
+        if (!c->tradesOffWithBaseline.empty())
+            std::cout << "trades off with the baseline: " << name << "'s size with " << c->tradesOffWithBaseline
+                      << " (correlation " << c->sizeCorrelation.at(c->tradesOffWithBaseline)
+                      << "): the data cannot tell the two apart\n";
     printSelfTest(res.selfTest);
     exitCode = kOk;
 }

@@ -221,7 +221,7 @@ void IdentifyLoopTab::showCandidates(const IdentifyResult& r) {
         setCell(candidates_, row, 1, QString::number(c.round));
         setCell(candidates_, row, 2, c.applicable ? QString::number(c.deltaBic, 'f', 1) : QStringLiteral("–"));
         setCell(candidates_, row, 3, c.applicable ? formatNrmse(c.fitNrmse) : QStringLiteral("–"));
-        const QString verdict = c.accepted ? tr("added") : QString::fromStdString(c.reason);
+        const QString verdict = QString::fromStdString(verdictOf(c));
         setCell(candidates_, row, 4, verdict, verdict);
         candidates_->item(row, 4)->setTextAlignment(Qt::AlignLeft | Qt::AlignVCenter);
         if (c.accepted) candidates_->item(row, 0)->setForeground(QColor(44, 120, 44));

@@ -104,6 +104,7 @@ void scoreFit(const Loop& L, Tried& t) {
     for (const ParamEstimate& p : f.estimates)
         if (p.name.rfind(sc.name + ".", 0) == 0) sc.params.push_back({p.name.substr(sc.name.size() + 1), p.value, p.stderr_});
     sc.sizeCorrelation = sizeCorrelations(f.fit, sc.name);
+    sc.tradesOffWithBaseline = baselineTradeOff(sc, L.opt.confoundedVif);
 }
 
 // One round's view of the current model refitted with the segment residual (for the stick-phase

@@ -209,6 +209,10 @@ struct CandidateScore {
     // parameter) and each baseline parameter. Near ±1 the two trade off.
     std::map<std::string, double> sizeCorrelation;
     std::string confoundedWith;  // the added effect it trades off with (selection test 0), if any
+    // The baseline parameter its size trades off with (variance inflation above confoundedVif,
+    // the largest if several), if any: the data cannot tell this effect from the base law's
+    // parameter (e.g. a parallel dashpot from η in the prescribed set-up). A report, not a test.
+    std::string tradesOffWithBaseline;
     std::string startNote;       // a first start that failed (ended above the current model, or on a bound) and was retried
     static constexpr double kNoTest = -1.0;
     std::string residual = "equation_error";  // dynamics: "equation_error" or "segments"; prescribed: "prescribed"
@@ -267,5 +271,9 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
 
 nlohmann::json toJson(const Diagnostics& d, bool withSeries);
 nlohmann::json toJson(const IdentifyResult& r);
+
+// A candidate's verdict as the reports show it: "added" or why not, and, if its size trades off
+// with a baseline parameter, that too.
+std::string verdictOf(const CandidateScore& c);
 
 }  // namespace stickslip::identify

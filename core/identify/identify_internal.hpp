@@ -201,6 +201,10 @@ std::map<std::string, double> sizeCorrelations(const FitResult& fit, const std::
 // The added effect whose size trades off with the candidate's in their joint fit: the one with
 // the largest variance inflation 1/(1 − r²) of the two sizes above maxVif (empty: none).
 std::string confoundedWith(const CandidateScore& sc, const std::vector<std::string>& added, double maxVif);
+// The baseline parameter (a sizeCorrelation key that is neither an effect nor an effect's
+// parameter) whose correlation with the candidate's size has the largest variance inflation
+// above maxVif; empty if none.
+std::string baselineTradeOff(const CandidateScore& sc, double maxVif);
 // The value of an effect's size parameter q at which the effect is absent in this data set's
 // model (q.vanishing, except where a baseline parameter covers part of the range).
 double effectVanishes(const Context& cx, const std::string& effect, const EffectParam& q);

@@ -1,5 +1,6 @@
 // The identify report as JSON (identify.hpp).
 #include <cmath>
+#include <cstdio>
 
 #include "identify.hpp"
 
@@ -119,6 +120,9 @@ nlohmann::json toJson(const IdentifyResult& r) {
                           }()},
                          {"start_note", c.startNote.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.startNote)},
                          {"confounded_with", c.confoundedWith.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.confoundedWith)},
+                         {"trades_off_with_baseline", c.tradesOffWithBaseline.empty()
+                                                          ? nlohmann::json(nullptr)
+                                                          : nlohmann::json(c.tradesOffWithBaseline)},
                          {"rejected_because", c.accepted ? nlohmann::json(nullptr) : nlohmann::json(c.reason)}});
     j["candidates"] = cands;
     j["diagnostics"] = {{"before", toJson(r.diagnosticsBefore, true)}, {"after", toJson(r.diagnosticsAfter, true)}};
@@ -141,6 +145,19 @@ nlohmann::json toJson(const IdentifyResult& r) {
     j["wall_time_s"] = r.wallTime_s;
     j["fits"] = r.fits;
     return j;
+}
+
+
+std::string verdictOf(const CandidateScore& c) {
+    std::string v = c.accepted ? "added" : c.reason;
+    if (!c.tradesOffWithBaseline.empty()) {
+        const auto it = c.sizeCorrelation.find(c.tradesOffWithBaseline);
+        char r[32];
+        std::snprintf(r, sizeof r, "%.3f", it != c.sizeCorrelation.end() ? it->second : 0.0);
+        v += "; its size trades off with the baseline's " + c.tradesOffWithBaseline + " (correlation " + r +
+             "): the data cannot tell the two apart";
+    }
+    return v;
 }
 
 }  // namespace stickslip::identify

@@ -58,6 +58,20 @@ std::string confoundedWith(const CandidateScore& sc, const std::vector<std::stri
     return worst;
 }
 
+std::string baselineTradeOff(const CandidateScore& sc, double maxVif) {
+    std::string worst;
+    double worstR2 = 1.0 - 1.0 / maxVif;  // VIF 1/(1 − r²) > maxVif
+    for (const auto& [name, r] : sc.sizeCorrelation) {
+        EffectInfo info;
+        if (name.find('.') != std::string::npos || findEffect(name, info) || !std::isfinite(r)) continue;
+        if (r * r > worstR2) {
+            worstR2 = r * r;
+            worst = name;
+        }
+    }
+    return worst;
+}
+
 double bic(double ss, double n, double neffCap, int p) {
     const double neff = std::max(std::min(n, neffCap), 2.0);
     return neff * std::log(std::max(ss, 1e-300) / std::max(n, 1.0)) + p * std::log(neff);

@@ -183,7 +183,7 @@ std::string renderHtmlReport(const IdentifyResult& r) {
           << (ho && c.heldOutP >= 0 ? fmt(c.heldOutP, "%.3g") : "&ndash;") << "</td><td>"
           << (sz ? fmt(std::abs(c.sizeValue - c.sizeNull) / c.sizeStderr, "%.2f") : "&ndash;") << "</td><td>"
           << (sz ? fmt(c.sizeCritical, "%.2f") : "&ndash;") << "</td><td class=l>"
-          << (c.accepted ? "added" : htmlEscape(c.reason)) << "</td></tr>\n";
+          << htmlEscape(verdictOf(c)) << "</td></tr>\n";
     }
     o << "</table>\n";
     writeSelfTest(o, r.selfTest);

@@ -126,6 +126,23 @@ private slots:
         sc.sizeCorrelation["b"] = 1.0;
         QCOMPARE(confoundedWith(sc, {"b"}, 10.0), std::string("b"));
     }
+    // The baseline parameter a candidate's size trades off with: the largest inflation above the
+    // limit among keys that are neither effects nor effect parameters; NaN decides nothing.
+    void baselineTradeOffSkipsEffectsAndTheirParameters() {
+        CandidateScore sc;
+        sc.sizeCorrelation = {{"normal_load_mu", 0.9999}, {"backlash.halfWidth_m", -0.9999}, {"mu", 0.96},
+                              {"epsT", -0.99}, {"eta", std::numeric_limits<double>::quiet_NaN()}};
+        QCOMPARE(baselineTradeOff(sc, 10.0), std::string("epsT"));  // VIF 50 beats mu's 12.8
+        sc.sizeCorrelation["epsT"] = 0.5;
+        QCOMPARE(baselineTradeOff(sc, 10.0), std::string("mu"));
+        QCOMPARE(baselineTradeOff(sc, 20.0), std::string());
+        sc.tradesOffWithBaseline = "mu";
+        sc.reason = "dBIC = 1 is not below -10";
+        QCOMPARE(verdictOf(sc), std::string("dBIC = 1 is not below -10; its size trades off with the baseline's mu "
+                                            "(correlation 0.960): the data cannot tell the two apart"));
+        sc.accepted = true;
+        QVERIFY(verdictOf(sc).rfind("added; ", 0) == 0);
+    }
     // The baseline restart (IdentifyOptions::heldOutRestart) is taken only for a gain on the
     // evidence scale of an effect: the damper's marginal one (sum of squares 945.60 -> 944.84,
     // session 13) is not, a D16-like one (NRMSE 0.1336 -> 0.0404) is; no finite gain, no restart.
