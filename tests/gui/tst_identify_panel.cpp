@@ -245,6 +245,8 @@ private slots:
         QCOMPARE(cell(ba, 1, 1), formatNrmse(core.after.fitNrmse));
         QCOMPARE(cell(ba, 1, 2), formatNrmse(core.after.validationNrmse));
         QCOMPARE(p.candidateTable()->rowCount(), static_cast<int>(core.candidates.size()));
+        for (size_t i = 0; i < core.candidates.size(); ++i)  // the reports' verdict text, trade-offs included
+            QCOMPARE(cell(p.candidateTable(), static_cast<int>(i), 4), QString::fromStdString(verdictOf(core.candidates[i])));
         QCOMPARE(p.effectsTable()->rowCount(), static_cast<int>(core.effectsAdded.size()));
         QVERIFY(p.unexplainedLabel()->text().contains(core.unexplained ? "Unexplained" : "No unexplained"));
         QVERIFY(p.overlayPlot()->seriesCount() >= 2);
