@@ -482,23 +482,20 @@ FitResult fitLeastSquares(const FitProblem& prob) {
         if (!(d(static_cast<Eigen::Index>(k)) > 0.0)) dead.push_back(res.freeNames[k]);
     const Eigen::Index P = static_cast<Eigen::Index>(p);
     res.correlation.assign(p * p, std::numeric_limits<double>::quiet_NaN());
-    {
-        // A parameter without effect keeps a zero row and column (pairCorrelation holds it).
-        Eigen::VectorXd s(P);
-        for (Eigen::Index k = 0; k < P; ++k) s(k) = d(k) > 0.0 ? 1.0 / std::sqrt(d(k)) : 0.0;
-        res.scaledNormal.resize(p * p);
-        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(res.scaledNormal.data(), P, P) =
-            s.asDiagonal() * JtJ * s.asDiagonal();
-        res.conditionLimit = prob.conditionLimit;
-    }
+    // JᵀJ scaled to unit diagonal; a parameter without effect keeps a zero row and column
+    // (pairCorrelation holds it).
+    Eigen::VectorXd sdiag(P);
+    for (Eigen::Index k = 0; k < P; ++k) sdiag(k) = d(k) > 0.0 ? 1.0 / std::sqrt(d(k)) : 0.0;
+    const Eigen::MatrixXd A = sdiag.asDiagonal() * JtJ * sdiag.asDiagonal();
+    res.scaledNormal.resize(p * p);
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(res.scaledNormal.data(), P, P) = A;
+    res.conditionLimit = prob.conditionLimit;
     if (!dead.empty()) {
         res.identifiable = false;
         res.conditionNumber = std::numeric_limits<double>::infinity();
         res.identifiabilityMessage = "not identifiable: the residuals do not depend on";
         for (const auto& n : dead) res.identifiabilityMessage += " " + n;
     } else {
-        const Eigen::VectorXd sdiag = d.cwiseSqrt().cwiseInverse();
-        const Eigen::MatrixXd A = sdiag.asDiagonal() * JtJ * sdiag.asDiagonal();
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(A);
         const Eigen::VectorXd ev = es.eigenvalues();  // ascending
         res.conditionNumber = ev(0) > 0 ? ev(P - 1) / ev(0) : std::numeric_limits<double>::infinity();
