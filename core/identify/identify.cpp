@@ -74,6 +74,9 @@ struct Loop {
     double curHeldOut = 0;
     std::vector<std::vector<double>> predBefore;
     std::map<std::string, CandidateScore> scores;
+    int baselineRestarts = 0;  // restartFromCandidates taken so far
+    Spec baseSpec;             // the baseline as adopted (adoptBaseline), for the self-test
+    FitOutcome baseFit;
 
     bool cancelled() const { return opt.cancel && opt.cancel->load(); }
     void progress(const std::string& s, double f) const {
@@ -169,6 +172,30 @@ bool restartFromHeldOut(Loop& L, const Spec& spec, FitOutcome& fit, const std::v
     return true;
 }
 
+// Makes L.cur the baseline: its held-out errors (with the held-out restart guard), diagnostics
+// and the "before" figures. `note` is kept as the baseline's note when the guard finds nothing.
+void adoptBaseline(Loop& L, const std::string& note) {
+    if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
+    L.res.baselineNote = note;
+    std::vector<std::map<std::string, double>> loo;
+    L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits, &loo);
+    std::string heldOutNote;
+    if (L.opt.heldOutRestart && restartFromHeldOut(L, L.spec, L.cur, loo, heldOutNote)) {
+        if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
+        L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
+    }
+    if (!heldOutNote.empty()) L.res.baselineNote += (L.res.baselineNote.empty() ? "" : "; ") + heldOutNote;
+    L.res.baseline = L.cur.estimates;
+    L.predBefore.clear();
+    L.res.diagnosticsBefore = diagnoseModel(L.cx, L.spec, L.cur, &L.predBefore);
+    L.curDiag = L.res.diagnosticsBefore;
+    L.res.tauInt = L.curDiag.integratedAcfTime;
+    L.curHeldOut = L.res.before.validationNrmse;
+    L.curErrors = L.res.before;
+    L.baseSpec = L.spec;
+    L.baseFit = L.cur;
+}
+
 // Fits the baseline (the law alone) and records "before". False with res.message on failure.
 bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
     L.progress("baseline", 0.0);
@@ -181,19 +208,7 @@ bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
         L.res.message = "baseline fit failed: " + L.cur.message;
         return false;
     }
-    if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
-    std::vector<std::map<std::string, double>> loo;
-    L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits, &loo);
-    if (L.opt.heldOutRestart && restartFromHeldOut(L, L.spec, L.cur, loo, L.res.baselineNote)) {
-        if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
-        L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
-    }
-    L.res.baseline = L.cur.estimates;
-    L.res.diagnosticsBefore = diagnoseModel(L.cx, L.spec, L.cur, &L.predBefore);
-    L.curDiag = L.res.diagnosticsBefore;
-    L.res.tauInt = L.curDiag.integratedAcfTime;
-    L.curHeldOut = L.res.before.validationNrmse;
-    L.curErrors = L.res.before;
+    adoptBaseline(L, "");
     // Segments: the independent units are the segments (each one reversal, stick and breakaway).
     for (size_t i : L.fitIdx) L.segEpisodes += static_cast<double>(L.cx.runs[i].segments.size());
     L.res.segmentsUsed = L.segEpisodes;
@@ -393,6 +408,41 @@ void addEffect(Loop& L, Round& R, Tried& chosen, const ModelErrors& me, double h
     L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr);
 }
 
+// The same guard from the other side (IdentifyOptions::heldOutRestart): every candidate
+// contains the baseline (its effect absent), so a candidate's fitted point with the effect
+// removed is a start for the baseline. When such a point fits the fit runs better than the
+// baseline did by more than the margin (restartWorthIt), the baseline fit stopped in a worse
+// minimum: it is refitted from the best such point and kept if it ends lower. Otherwise every
+// candidate would gain the baseline's own missed improvement and look like an effect.
+// True when the baseline changed (the round must be fitted again).
+bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried) {
+    double bestSS = L.cur.ss * (1.0 - 1e-6);
+    std::map<std::string, double> best;
+    std::string from;
+    for (const Tried& t : tried) {
+        if (t.spec.segments != L.spec.segments) continue;
+        std::map<std::string, double> v = t.fit.values;
+        for (auto it = v.begin(); it != v.end();)
+            it = it->first.rfind(t.sc.name + ".", 0) == 0 ? v.erase(it) : std::next(it);
+        const double ss = evalSS(L.cx, L.spec, v, L.fitIdx);
+        if (std::isfinite(ss) && ss < bestSS) bestSS = ss, best = std::move(v), from = t.sc.name;
+    }
+    if (from.empty()) return false;
+    const double gain = L.bicOf(L.cur, L.spec, 1.0) - L.bicAt(bestSS, L.cur, L.spec, 1.0);
+    if (!restartWorthIt(gain, L.opt.bicMargin)) return false;
+    L.progress("refit of the baseline from " + from + "'s point", 0.0);
+    FitOutcome g = fitSpec(L.cx, L.spec, best, L.fitIdx, 1, L.res.fits);
+    if (!g.ok || !(g.ss < L.cur.ss)) return false;
+    const std::string note = "the " + from + " fit's point with the effect removed fitted all runs at sum of squares " +
+                             std::to_string(bestSS) + " against the baseline's " + std::to_string(L.cur.ss) +
+                             " (BIC lower by " + std::to_string(gain) +
+                             "): the baseline stopped in a worse minimum and was refitted from that point (" +
+                             std::to_string(g.ss) + ")";
+    L.cur = std::move(g);
+    adoptBaseline(L, L.res.baselineNote.empty() ? note : L.res.baselineNote + "; " + note);
+    return true;
+}
+
 // One round: every candidate not yet in the model is fitted and scored; the best that passes
 // the selection is added. False when nothing was added (the loop ends).
 bool runRound(Loop& L, int number, const std::vector<std::string>& cands) {
@@ -411,6 +461,16 @@ bool runRound(Loop& L, int number, const std::vector<std::string>& cands) {
         if (std::optional<Tried> t = fitCandidate(L, R, c)) tried.push_back(std::move(*t));
     }
     if (tried.empty()) return false;
+    // The baseline's guard against its own local minimum (round 1: the current model is the
+    // baseline). Each restart lowers the baseline's BIC by more than the margin; at most
+    // kBaselineRestarts, a bound on the cost only.
+    constexpr int kBaselineRestarts = 3;
+    if (L.opt.heldOutRestart && L.spec.effects.empty() && L.baselineRestarts < kBaselineRestarts &&
+        restartFromCandidates(L, tried)) {
+        ++L.baselineRestarts;
+        L.scores.clear();
+        return runRound(L, number, cands);
+    }
     std::sort(tried.begin(), tried.end(), [](const auto& a, const auto& b) { return a.sc.deltaBic < b.sc.deltaBic; });
     ModelErrors me;
     double heldOutRef = 0;
@@ -515,15 +575,6 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         return res;
     }
     if (!fitBaseline(L, runs)) return res;
-    if (opt.selfTest.replicas > 0) {
-        res.selfTest = runSelfTest(cx, L.spec, L.cur, L.fitIdx, cands,
-                                   std::min(L.cur.count / std::max(L.curDiag.integratedAcfTime, 1.0), L.episodes));
-        if (!res.selfTest.ok && L.cancelled()) {
-            res.cancelled = true;
-            res.message = "cancelled during the self-test";
-            return res;
-        }
-    }
     res.residual = L.residualName(L.spec);
     for (int round = 1; round <= opt.maxEffects; ++round) {
         if (L.cancelled()) {
@@ -531,6 +582,16 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
             break;
         }
         if (!runRound(L, round, cands)) break;
+    }
+    // The self-test around the final baseline (round 1 may have refitted it, restartFromCandidates).
+    if (opt.selfTest.replicas > 0 && !L.cancelled()) {
+        res.selfTest = runSelfTest(cx, L.baseSpec, L.baseFit, L.fitIdx, cands,
+                                   std::min(L.baseFit.count / std::max(res.tauInt, 1.0), L.episodes));
+        if (!res.selfTest.ok && L.cancelled()) {
+            res.cancelled = true;
+            res.message = "cancelled during the self-test";
+            return res;
+        }
     }
     for (const std::string& c : cands)
         if (L.scores.count(c)) res.candidates.push_back(L.scores[c]);
