@@ -90,9 +90,7 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
     for (const CandidateScore& c : res.candidates) last[c.name] = &c;
     for (const auto& [name, c] : last)
         if (!c->tradesOffWithBaseline.empty())
-            std::cout << "trades off with the baseline: " << name << "'s size with " << c->tradesOffWithBaseline
-                      << " (correlation " << c->sizeCorrelation.at(c->tradesOffWithBaseline)
-                      << "): the data cannot tell the two apart\n";
+            std::cout << name << ": " << baselineTradeOffText(*c) << "\n";
     printSelfTest(res.selfTest);
     exitCode = kOk;
 }

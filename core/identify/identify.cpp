@@ -208,7 +208,31 @@ bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
         L.res.message = "baseline fit failed: " + L.cur.message;
         return false;
     }
-    adoptBaseline(L, "");
+    // A baseline that explains none of the force (fit NRMSE ≥ 1: no better than no force) has
+    // stopped where the law predicts none and its Jacobian vanishes: a solver failure, not an
+    // answer. Tried again from the library's default law (μ from the data, as the first start).
+    std::string note;
+    const auto nrmse = [](const FitOutcome& f) { return f.count > 0 ? std::sqrt(f.ss / f.count) : kNaN; };
+    if (!(nrmse(L.cur) < 1.0)) {
+        const RateStateParams defaults;
+        std::map<std::string, double> alt = baselineStart(L.cx, L.fitIdx, &defaults);
+        if (L.cx.anyDynamics) alt["m"] = start["m"];
+        L.progress("baseline from the default law", 0.0);
+        const FitOutcome g = fitSpec(L.cx, L.spec, alt, L.fitIdx, L.opt.multistarts, L.res.fits, true);
+        note = "the fit from the given start explained none of the force (fit NRMSE " + std::to_string(nrmse(L.cur)) +
+               ": the law predicts no force there and the solver cannot leave), ";
+        if (g.ok && g.ss < L.cur.ss) {
+            L.cur = g;
+            note += "refitted from the default law (fit NRMSE " + std::to_string(nrmse(g)) + ")";
+        } else {
+            note += "and the default law's start did no better";
+        }
+        if (!(nrmse(L.cur) < 1.0)) {
+            L.res.message = "baseline fit failed: " + note;
+            return false;
+        }
+    }
+    adoptBaseline(L, note);
     // Segments: the independent units are the segments (each one reversal, stick and breakaway).
     for (size_t i : L.fitIdx) L.segEpisodes += static_cast<double>(L.cx.runs[i].segments.size());
     L.res.segmentsUsed = L.segEpisodes;

@@ -272,6 +272,9 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
 nlohmann::json toJson(const Diagnostics& d, bool withSeries);
 nlohmann::json toJson(const IdentifyResult& r);
 
+// "its size trades off with the baseline's P (correlation r): …" when the candidate's size trades
+// off with a baseline parameter (CandidateScore::tradesOffWithBaseline), else empty.
+std::string baselineTradeOffText(const CandidateScore& c);
 // A candidate's verdict as the reports show it: "added" or why not, and, if its size trades off
 // with a baseline parameter, that too.
 std::string verdictOf(const CandidateScore& c);

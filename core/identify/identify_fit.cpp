@@ -310,7 +310,7 @@ Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome&
 // its peak), and the other coefficients of the starting law scaled with it (they are all
 // "per unit normal load", so a device whose reference load is a band tension has them all
 // large together).
-std::map<std::string, double> baselineStart(const Context& cx, const std::vector<size_t>& fitIdx) {
+std::map<std::string, double> baselineStart(const Context& cx, const std::vector<size_t>& fitIdx, const RateStateParams* from) {
     std::vector<double> ratio;
     for (size_t i : fitIdx) {
         const Prepared& p = cx.runs[i];
@@ -320,7 +320,10 @@ std::map<std::string, double> baselineStart(const Context& cx, const std::vector
             if (std::abs(p.V[k]) > 0.5 * vmax && p.run->normalForce_N > 0) ratio.push_back(std::abs(p.F[k]) / p.run->normalForce_N);
     }
     std::map<std::string, double> st;
-    const RateStateParams& s0 = cx.opt->start;
+    const RateStateParams& s0 = from ? *from : cx.opt->start;
+    if (from)
+        for (const std::string& n : cx.opt->freeLaw)
+            if (const double v = lawValue(s0, n); std::isfinite(v)) st[n] = v;
     if (ratio.empty() || !(s0.mu > 0)) return st;
     const double mu0 = dsp::median(std::move(ratio));
     if (!(mu0 > 0) || !std::isfinite(mu0)) return st;

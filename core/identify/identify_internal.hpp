@@ -163,7 +163,11 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
                      const std::vector<size_t>& valIdx, long& fits,
                      std::vector<std::map<std::string, double>>* loo = nullptr);
 Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds);
-std::map<std::string, double> baselineStart(const Context& cx, const std::vector<size_t>& fitIdx);
+// The baseline's start: μ from the data (median |F|/t_N at the faster half of the slip rates) and
+// C1, η in proportion to the start law's; with `from`, every free law value from that law instead
+// of the options' start (the rest of the start map is left to the options).
+std::map<std::string, double> baselineStart(const Context& cx, const std::vector<size_t>& fitIdx,
+                                            const RateStateParams* from = nullptr);
 // "lower" or "upper" when effect e's size parameter (params[0]) in `vals` sits on that physical
 // bound (a lower bound of 0, where the effect vanishes, does not count), else empty.
 std::string sizeBound(const Context& cx, const std::string& e, const std::map<std::string, double>& vals);

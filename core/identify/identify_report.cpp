@@ -148,15 +148,18 @@ nlohmann::json toJson(const IdentifyResult& r) {
 }
 
 
+std::string baselineTradeOffText(const CandidateScore& c) {
+    if (c.tradesOffWithBaseline.empty()) return {};
+    const auto it = c.sizeCorrelation.find(c.tradesOffWithBaseline);
+    char r[32];
+    std::snprintf(r, sizeof r, "%.3f", it != c.sizeCorrelation.end() ? it->second : 0.0);
+    return "its size trades off with the baseline's " + c.tradesOffWithBaseline + " (correlation " + r +
+           "): the data cannot tell the two apart";
+}
+
 std::string verdictOf(const CandidateScore& c) {
     std::string v = c.accepted ? "added" : c.reason;
-    if (!c.tradesOffWithBaseline.empty()) {
-        const auto it = c.sizeCorrelation.find(c.tradesOffWithBaseline);
-        char r[32];
-        std::snprintf(r, sizeof r, "%.3f", it != c.sizeCorrelation.end() ? it->second : 0.0);
-        v += "; its size trades off with the baseline's " + c.tradesOffWithBaseline + " (correlation " + r +
-             "): the data cannot tell the two apart";
-    }
+    if (const std::string t = baselineTradeOffText(c); !t.empty()) v += "; " + t;
     return v;
 }
 

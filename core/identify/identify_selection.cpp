@@ -42,34 +42,35 @@ std::map<std::string, double> sizeCorrelations(const FitResult& fit, const std::
     return out;
 }
 
-std::string confoundedWith(const CandidateScore& sc, const std::vector<std::string>& added, double maxVif) {
+namespace {
+// The key of sc.sizeCorrelation that `use` accepts with the largest r², if its variance inflation
+// 1/(1 − r²) is above maxVif; NaN decides nothing; on equal r² the first key (alphabetical) wins.
+template <class Use>
+std::string largestTradeOff(const CandidateScore& sc, double maxVif, Use use) {
     std::string worst;
-    double worstVif = maxVif;
-    for (const std::string& a : added) {
-        const auto it = sc.sizeCorrelation.find(a);
-        if (it == sc.sizeCorrelation.end() || !std::isfinite(it->second)) continue;
-        const double r2 = it->second * it->second;
-        const double vif = r2 < 1.0 ? 1.0 / (1.0 - r2) : std::numeric_limits<double>::infinity();
-        if (vif > worstVif) {
-            worstVif = vif;
-            worst = a;
-        }
-    }
-    return worst;
-}
-
-std::string baselineTradeOff(const CandidateScore& sc, double maxVif) {
-    std::string worst;
-    double worstR2 = 1.0 - 1.0 / maxVif;  // VIF 1/(1 − r²) > maxVif
+    double worstR2 = 1.0 - 1.0 / maxVif;  // 1/(1 − r²) > maxVif
     for (const auto& [name, r] : sc.sizeCorrelation) {
-        EffectInfo info;
-        if (name.find('.') != std::string::npos || findEffect(name, info) || !std::isfinite(r)) continue;
+        if (!std::isfinite(r) || !use(name)) continue;
         if (r * r > worstR2) {
             worstR2 = r * r;
             worst = name;
         }
     }
     return worst;
+}
+}  // namespace
+
+std::string confoundedWith(const CandidateScore& sc, const std::vector<std::string>& added, double maxVif) {
+    return largestTradeOff(sc, maxVif, [&](const std::string& name) {
+        return std::find(added.begin(), added.end(), name) != added.end();
+    });
+}
+
+std::string baselineTradeOff(const CandidateScore& sc, double maxVif) {
+    return largestTradeOff(sc, maxVif, [](const std::string& name) {
+        EffectInfo info;
+        return name.find('.') == std::string::npos && !findEffect(name, info);
+    });
 }
 
 double bic(double ss, double n, double neffCap, int p) {

@@ -74,33 +74,27 @@ private slots:
         const auto j = toJson(r);
         QCOMPARE(j["effects_added"][0]["confounded_with"][0].get<std::string>(), other);
     }
-    // The baseline's guard against its own worse minimum, from the candidates' side
-    // (restartFromCandidates): from C1 = 2, v_c = 0.02, η = 0.001 its one start stops at a sum of
-    // squares of 4004 where the good start reaches 0.51. The frictional_lag candidate, warm-started
-    // from there, leaves that minimum; its point with the lag removed fits better by far more
-    // than the margin, so the baseline is refitted from it and the round fitted again: "before"
-    // is then the good start's baseline and nothing is added (measured: note below, 0.01132).
-    void baselineLeavesAWorseMinimumThroughACandidate() {
+    // A start where the law predicts no force at all (C1 = 0.5 > μ's share at v_c = 0.003: the
+    // strength is negative and the return map holds F = 0) has a zero Jacobian: the solver
+    // stopped there after one iteration at fit NRMSE 1.00007 and the loop went on from it. It is
+    // now a solver failure, retried from the default law, and said so; the baseline is then the
+    // good start's.
+    void baselineThatExplainsNothingIsRetried() {
         auto o = synth::testOptions();
-        o.nullReplicas = 50;
-        o.candidates = {"frictional_lag", "direction_asymmetry", "wear_drift"};
+        o.maxEffects = 0;
+        o.multistarts = 2;
         const auto runs = synth::makeRuns(synth::trueModel(), 2.0, 0.02, 1);
         const IdentifyResult good = identifyEffects(runs, o);
         QVERIFY2(good.ok, good.message.c_str());
-        QVERIFY(good.baselineNote.find("with the effect removed") == std::string::npos);
-        o.start.C1 = 2.0;
-        o.start.vc_mps = 0.02;
-        o.start.eta_s_per_m = 0.001;
+        o.start.C1 = 0.5;
+        o.start.vc_mps = 0.003;
+        o.start.eta_s_per_m = 1.0;
         const IdentifyResult r = identifyEffects(runs, o);
         QVERIFY2(r.ok, r.message.c_str());
         qInfo("%s", r.baselineNote.c_str());
-        QVERIFY2(r.baselineNote.find("fit's point with the effect removed") != std::string::npos, r.baselineNote.c_str());
-        QVERIFY2(r.baselineNote.find("refitted from that point") != std::string::npos, r.baselineNote.c_str());
+        QVERIFY2(r.baselineNote.find("explained none of the force") != std::string::npos, r.baselineNote.c_str());
+        QVERIFY2(r.baselineNote.find("refitted from the default law") != std::string::npos, r.baselineNote.c_str());
         QVERIFY(std::abs(r.before.fitNrmse - good.before.fitNrmse) <= 1e-3 * good.before.fitNrmse);
-        QVERIFY(r.effectsAdded.empty());
-        // The round was fitted again on the new baseline: no candidate keeps the old one's gain.
-        for (const CandidateScore& c : r.candidates) QVERIFY2(!(c.deltaBic < -o.bicMargin), c.name.c_str());
-        QCOMPARE(toJson(r)["baseline"]["note"].get<std::string>(), r.baselineNote);
     }
     void noneAddsNothing() {
         const IdentifyResult r = runLoop(synth::trueModel(), 1);

@@ -125,6 +125,13 @@ private slots:
         QCOMPARE(confoundedWith(sc, {"b"}, 10.0), std::string());
         sc.sizeCorrelation["b"] = 1.0;
         QCOMPARE(confoundedWith(sc, {"b"}, 10.0), std::string("b"));
+        // Equal inflation (correlations clamped to ±1): the first name in alphabetical order, in
+        // whatever order the effects were added; the baseline's trade-off follows the same rule.
+        sc.sizeCorrelation["c"] = -1.0;
+        QCOMPARE(confoundedWith(sc, {"c", "b"}, 10.0), std::string("b"));
+        CandidateScore base;
+        base.sizeCorrelation = {{"mu", 1.0}, {"eta", -1.0}, {"normal_load_mu", 1.0}};
+        QCOMPARE(baselineTradeOff(base, 10.0), std::string("eta"));
     }
     // The baseline parameter a candidate's size trades off with: the largest inflation above the
     // limit among keys that are neither effects nor effect parameters; NaN decides nothing.
