@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "slip_newton.hpp"
+
 namespace stickslip {
 
 // Fit ranges: in the prescribed set-up t_N is a reference load (e.g. a band tension), so μ,
@@ -157,32 +159,12 @@ ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, d
     }
 
     // Safeguarded Newton from Δλ = 0 (R(0) = Φ_trial > 0, so 0 is the lower bracket).
-    const double ftol = 1e-13 * (a + tN);
-    double x = 0.0;
-    int it = 0;
-    bool ok = false;
-    if (slipHint > 0.0 && slipHint < hi) {
-        // Warm start (e.g. the previous step's Δλ in steady sliding): evaluate there and let the
-        // sign of R tighten the bracket before Newton continues from it.
-        x = slipHint;
-        eval(x, R, dR, alpha);
-        if (R > 0.0) lo = x; else hi = x;
-        ++it;
-        if (std::abs(R) <= ftol) ok = true;
-    }
-    for (; !ok && it < 200; ++it) {
-        double xn = (dR < 0.0) ? x - R / dR : 0.5 * (lo + hi);
-        if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);  // bisection safeguard
-        const double step = std::abs(xn - x);
-        x = xn;
-        eval(x, R, dR, alpha);
-        if (R > 0.0) lo = x; else hi = x;
-        // Stop on the residual (relative to the trial force), on a collapsed bracket, or when the
-        // iterate no longer moves (round-off floor).
-        if (std::abs(R) <= ftol || hi - lo <= 1e-15 * hi || step <= 4e-16 * x) { ok = true; break; }
-    }
-    res.iterations = it + 1;
-    res.converged = ok;
+    const SlipRoot root = solveSlip([&](double xx, double& Rx, double& dRx) { eval(xx, Rx, dRx, alpha); }, 0.0, R, dR, lo,
+                                    hi, slipHint, 1e-13 * (a + tN));
+    const double x = root.x;
+    dR = root.dR;
+    res.iterations = root.iterations;
+    res.converged = root.converged;
     res.slipIncrement_m = x;
     res.state.force_N = s * (a - eps * x);
     res.state.alpha = alpha;

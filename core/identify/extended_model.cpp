@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../friction/slip_newton.hpp"
 #include "../integrate/dynamics.hpp"
 
 namespace stickslip::identify {
@@ -139,7 +140,7 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
         R = a - eps * xx - y0 - tN * c1 * (e - 1.0) - visc * xx;
         dRx = -eps - visc - tN * c1 * invR * e * da;
     };
-    double lo = 0.0, hi = hi0, R = -1.0;
+    double hi = hi0, R = -1.0;
     // R(Δλ) <= a - y0 + t_N c1 - (ε + η t_N/Δt) Δλ since K1 >= -C1: when that bound puts the
     // root below a/ε, R(a/ε) < 0 and the force cannot reach zero in the step (no evaluation).
     const double rootBound = (a - y0 + tN * c1) / (eps + visc);
@@ -147,21 +148,16 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
     if (R > 0.0) {  // slides to zero force within the step
         x = hi;
     } else {
-        x = std::min(phiTrial / (eps + visc), hi);
-        const double ftol = 1e-12 * (a + tN);
-        bool ok = false;
-        int it = 0;
-        for (; it < 200; ++it) {
-            eval(x, R, dR, alpha);
-            if (std::abs(R) <= ftol) { ok = true; break; }
-            if (R > 0.0) lo = x; else hi = x;
-            double xn = (dR < 0.0) ? x - R / dR : 0.5 * (lo + hi);
-            if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);
-            if (hi - lo <= 1e-15 * hi0 + 1e-300) { x = xn; eval(x, R, dR, alpha); ok = true; break; }
-            x = xn;
-        }
-        res.iterations = it + 1;
-        res.converged = ok;
+        // The rate-state law's own solve, from the elastic–viscous predictor Φ_trial/(ε + η t_N/Δt)
+        // (as a warm start; from Δλ = 0, where R = Φ_trial and dα/dΔλ = −α_n/D_c in both state
+        // steps, when the predictor is beyond the bracket).
+        const double dR0 = -(eps + visc) + tN * c1 * invR * e0 * st.alpha * invDc;
+        const SlipRoot root = solveSlip([&](double xx, double& Rx, double& dRx) { eval(xx, Rx, dRx, alpha); }, 0.0, phiTrial,
+                                        dR0, 0.0, hi, phiTrial / (eps + visc), 1e-12 * (a + tN));
+        x = root.x;
+        dR = root.dR;
+        res.iterations = root.iterations;
+        res.converged = root.converged;
     }
     // α_{n+1} is the next step's α_n: hand its exponential on instead of recomputing it.
     if (cache) cache->alpha = alpha, cache->e = eAlpha;

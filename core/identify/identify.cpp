@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -74,7 +75,7 @@ struct Loop {
     double curHeldOut = 0;
     std::vector<std::vector<double>> predBefore;
     std::map<std::string, CandidateScore> scores;
-    int baselineRestarts = 0;  // restartFromCandidates taken so far
+    int roundRestarts = 0;  // restartFromCandidates taken in the current round
     Spec baseSpec;             // the baseline as adopted (adoptBaseline), for the self-test
     FitOutcome baseFit;
 
@@ -102,7 +103,7 @@ void scoreFit(const Loop& L, Tried& t) {
     CandidateScore& sc = t.sc;
     const FitOutcome& f = t.fit;
     sc.deltaBic = L.bicOf(f, t.spec, t.spec.segments == L.spec.segments ? L.curDiag.integratedAcfTime : 1.0) - t.bicBase;
-    sc.fitNrmse = f.count > 0 ? std::sqrt(f.ss / f.count) : 0.0;
+    sc.fitNrmse = f.nrmse(0.0);
     sc.params.clear();
     for (const ParamEstimate& p : f.estimates)
         if (p.name.rfind(sc.name + ".", 0) == 0) sc.params.push_back({p.name.substr(sc.name.size() + 1), p.value, p.stderr_});
@@ -140,35 +141,55 @@ struct Round {
     }
 };
 
+// The core both restart guards share: the best of `points` (the model `spec` evaluated at each)
+// below `fit`'s sum of squares, the BIC it gains, and, when that gain is evidence on the scale the
+// loop asks of an effect (restartWorthIt: lower BIC by more than bicMargin, τ_int = 1, the larger
+// n_eff, so in doubt it restarts), `spec` refitted from it. A smaller gain could not change a
+// verdict and would cost a fit and the held-out refits again.
+struct RestartTry {
+    int best = -1;        // index into points; −1: none fitted better
+    double bestSS = 0, gain = 0;
+    bool worthIt = false;
+    FitOutcome refit;     // from points[best] when worthIt
+    bool lowers(const FitOutcome& fit) const { return worthIt && refit.ok && refit.ss < fit.ss; }
+};
+
+RestartTry tryRestart(Loop& L, const Spec& spec, const FitOutcome& fit, const std::vector<std::map<std::string, double>>& points,
+                      const std::function<std::string(int best)>& what) {
+    RestartTry r;
+    r.bestSS = fit.ss * (1.0 - 1e-6);
+    for (size_t i = 0; i < points.size(); ++i) {
+        const double ss = evalSS(L.cx, spec, points[i], L.fitIdx);
+        if (std::isfinite(ss) && ss < r.bestSS) r.bestSS = ss, r.best = static_cast<int>(i);
+    }
+    if (r.best < 0) return r;
+    r.gain = L.bicOf(fit, spec, 1.0) - L.bicAt(r.bestSS, fit, spec, 1.0);
+    r.worthIt = restartWorthIt(r.gain, L.opt.bicMargin);
+    if (r.worthIt) {
+        L.progress(what(r.best), 0.0);
+        r.refit = fitSpec(L.cx, spec, points[r.best], L.fitIdx, 1, L.res.fits);
+    }
+    return r;
+}
+
 // IdentifyOptions::heldOutRestart: the leave-one-run-out refits (`loo`) are warm-started from
 // the fit they check; one whose point fits all the fit runs better than that fit shows it stopped
-// in a worse minimum. The restart is taken only when that point's gain is evidence on the scale
-// the loop asks of an effect (lower BIC by more than bicMargin, τ_int = 1: the larger n_eff, so in
-// doubt it restarts); a smaller gain could not change a verdict and costs a fit and the held-out
-// refits again. The model is then refitted from the best such point and kept if it ends lower.
-// The same guard for every model the loop keeps (the baseline, a candidate about to be judged).
-// True when `fit` changed; `note` says what was found either way.
+// in a worse minimum, and the model is refitted from the best such point (tryRestart) and kept
+// if it ends lower. The same guard for every model the loop keeps (the baseline, a candidate
+// about to be judged). True when `fit` changed; `note` says what was found either way.
 bool restartFromHeldOut(Loop& L, const Spec& spec, FitOutcome& fit, const std::vector<std::map<std::string, double>>& loo,
                         std::string& note) {
-    double bestSS = fit.ss * (1.0 - 1e-6);
-    const std::map<std::string, double>* best = nullptr;
-    for (const auto& v : loo) {
-        const double ss = evalSS(L.cx, spec, v, L.fitIdx);
-        if (std::isfinite(ss) && ss < bestSS) bestSS = ss, best = &v;
-    }
-    if (!best) return false;
-    const double gain = L.bicOf(fit, spec, 1.0) - L.bicAt(bestSS, fit, spec, 1.0);
-    const std::string found = "a leave-one-run-out refit's point fitted all runs at sum of squares " + std::to_string(bestSS) +
-                              " against the full fit's " + std::to_string(fit.ss) + " (BIC lower by " + std::to_string(gain);
-    if (!restartWorthIt(gain, L.opt.bicMargin)) {
+    RestartTry r = tryRestart(L, spec, fit, loo, [](int) { return std::string("refit from a held-out refit's point"); });
+    if (r.best < 0) return false;
+    const std::string found = "a leave-one-run-out refit's point fitted all runs at sum of squares " + std::to_string(r.bestSS) +
+                              " against the full fit's " + std::to_string(fit.ss) + " (BIC lower by " + std::to_string(r.gain);
+    if (!r.worthIt) {
         note = found + ", not more than the margin " + std::to_string(L.opt.bicMargin) + "): the full fit kept";
         return false;
     }
-    L.progress("refit from a held-out refit's point", 0.0);
-    FitOutcome g = fitSpec(L.cx, spec, *best, L.fitIdx, 1, L.res.fits);
-    if (!g.ok || !(g.ss < fit.ss)) return false;
-    note = found + "): the full fit stopped in a worse minimum and was refitted from that point (" + std::to_string(g.ss) + ")";
-    fit = std::move(g);
+    if (!r.lowers(fit)) return false;
+    note = found + "): the full fit stopped in a worse minimum and was refitted from that point (" + std::to_string(r.refit.ss) + ")";
+    fit = std::move(r.refit);
     return true;
 }
 
@@ -212,22 +233,21 @@ bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
     // stopped where the law predicts none and its Jacobian vanishes: a solver failure, not an
     // answer. Tried again from the library's default law (μ from the data, as the first start).
     std::string note;
-    const auto nrmse = [](const FitOutcome& f) { return f.count > 0 ? std::sqrt(f.ss / f.count) : kNaN; };
-    if (!(nrmse(L.cur) < 1.0)) {
+    if (!(L.cur.nrmse() < 1.0)) {
         const RateStateParams defaults;
         std::map<std::string, double> alt = baselineStart(L.cx, L.fitIdx, &defaults);
         if (L.cx.anyDynamics) alt["m"] = start["m"];
         L.progress("baseline from the default law", 0.0);
         const FitOutcome g = fitSpec(L.cx, L.spec, alt, L.fitIdx, L.opt.multistarts, L.res.fits, true);
-        note = "the fit from the given start explained none of the force (fit NRMSE " + std::to_string(nrmse(L.cur)) +
+        note = "the fit from the given start explained none of the force (fit NRMSE " + std::to_string(L.cur.nrmse()) +
                ": the law predicts no force there and the solver cannot leave), ";
         if (g.ok && g.ss < L.cur.ss) {
             L.cur = g;
-            note += "refitted from the default law (fit NRMSE " + std::to_string(nrmse(g)) + ")";
+            note += "refitted from the default law (fit NRMSE " + std::to_string(g.nrmse()) + ")";
         } else {
             note += "and the default law's start did no better";
         }
-        if (!(nrmse(L.cur) < 1.0)) {
+        if (!(L.cur.nrmse() < 1.0)) {
             L.res.message = "baseline fit failed: " + note;
             return false;
         }
@@ -432,38 +452,61 @@ void addEffect(Loop& L, Round& R, Tried& chosen, const ModelErrors& me, double h
     L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr);
 }
 
+// Makes the refitted L.cur (the baseline and the effects added so far) the current model again:
+// its held-out errors (with the held-out restart guard), diagnostics and "after", the added
+// effects' parameters, and the last added effect's held-out error after and note.
+void adoptCurrent(Loop& L, const std::string& note) {
+    std::vector<std::map<std::string, double>> loo;
+    L.curErrors = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits, &loo);
+    std::string heldOutNote;
+    if (L.opt.heldOutRestart && restartFromHeldOut(L, L.spec, L.cur, loo, heldOutNote))
+        L.curErrors = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
+    L.curHeldOut = L.curErrors.validationNrmse;
+    L.res.after = L.curErrors;
+    L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr);
+    for (AddedEffect& ae : L.res.effectsAdded) {
+        ae.params.clear();
+        for (const ParamEstimate& p : L.cur.estimates)
+            if (p.name.rfind(ae.name + ".", 0) == 0) ae.params.push_back({p.name.substr(ae.name.size() + 1), p.value, p.stderr_});
+    }
+    AddedEffect& last = L.res.effectsAdded.back();
+    last.heldOutAfter = L.curHeldOut;
+    last.note = (last.note.empty() ? "" : last.note + "; ") + note;
+    if (!heldOutNote.empty()) last.note += "; " + heldOutNote;
+}
+
 // The same guard from the other side (IdentifyOptions::heldOutRestart): every candidate
-// contains the baseline (its effect absent), so a candidate's fitted point with the effect
-// removed is a start for the baseline. When such a point fits the fit runs better than the
-// baseline did by more than the margin (restartWorthIt), the baseline fit stopped in a worse
-// minimum: it is refitted from the best such point and kept if it ends lower. Otherwise every
-// candidate would gain the baseline's own missed improvement and look like an effect.
-// True when the baseline changed (the round must be fitted again).
+// contains the current model (the baseline and the effects added so far; its own effect absent),
+// so a candidate's fitted point with its effect removed is a start for the current model. When
+// such a point fits the fit runs better than the current model did by more than the margin
+// (restartWorthIt), the current fit stopped in a worse minimum: it is refitted from the best such
+// point and kept if it ends lower. Otherwise every candidate would gain the current model's own
+// missed improvement and look like an effect. True when the current model changed (the round
+// must be fitted again).
 bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried) {
-    double bestSS = L.cur.ss * (1.0 - 1e-6);
-    std::map<std::string, double> best;
-    std::string from;
+    std::vector<std::map<std::string, double>> points;
+    std::vector<std::string> from;
     for (const Tried& t : tried) {
         if (t.spec.segments != L.spec.segments) continue;
         std::map<std::string, double> v = t.fit.values;
         for (auto it = v.begin(); it != v.end();)
             it = it->first.rfind(t.sc.name + ".", 0) == 0 ? v.erase(it) : std::next(it);
-        const double ss = evalSS(L.cx, L.spec, v, L.fitIdx);
-        if (std::isfinite(ss) && ss < bestSS) bestSS = ss, best = std::move(v), from = t.sc.name;
+        points.push_back(std::move(v));
+        from.push_back(t.sc.name);
     }
-    if (from.empty()) return false;
-    const double gain = L.bicOf(L.cur, L.spec, 1.0) - L.bicAt(bestSS, L.cur, L.spec, 1.0);
-    if (!restartWorthIt(gain, L.opt.bicMargin)) return false;
-    L.progress("refit of the baseline from " + from + "'s point", 0.0);
-    FitOutcome g = fitSpec(L.cx, L.spec, best, L.fitIdx, 1, L.res.fits);
-    if (!g.ok || !(g.ss < L.cur.ss)) return false;
-    const std::string note = "the " + from + " fit's point with the effect removed fitted all runs at sum of squares " +
-                             std::to_string(bestSS) + " against the baseline's " + std::to_string(L.cur.ss) +
-                             " (BIC lower by " + std::to_string(gain) +
-                             "): the baseline stopped in a worse minimum and was refitted from that point (" +
-                             std::to_string(g.ss) + ")";
-    L.cur = std::move(g);
-    adoptBaseline(L, L.res.baselineNote.empty() ? note : L.res.baselineNote + "; " + note);
+    RestartTry r =
+        tryRestart(L, L.spec, L.cur, points, [&](int best) { return "refit of the baseline from " + from[best] + "'s point"; });
+    if (!r.lowers(L.cur)) return false;
+    const std::string model = L.spec.effects.empty() ? "baseline" : "model with " + L.res.effectsAdded.back().name;
+    const std::string note = "the " + from[r.best] + " fit's point with the effect removed fitted all runs at sum of squares " +
+                             std::to_string(r.bestSS) + " against the " + model + "'s " + std::to_string(L.cur.ss) +
+                             " (BIC lower by " + std::to_string(r.gain) + "): the " + model +
+                             " stopped in a worse minimum and was refitted from that point (" + std::to_string(r.refit.ss) + ")";
+    L.cur = std::move(r.refit);
+    if (L.spec.effects.empty())
+        adoptBaseline(L, L.res.baselineNote.empty() ? note : L.res.baselineNote + "; " + note);
+    else
+        adoptCurrent(L, note);
     return true;
 }
 
@@ -485,16 +528,18 @@ bool runRound(Loop& L, int number, const std::vector<std::string>& cands) {
         if (std::optional<Tried> t = fitCandidate(L, R, c)) tried.push_back(std::move(*t));
     }
     if (tried.empty()) return false;
-    // The baseline's guard against its own local minimum (round 1: the current model is the
-    // baseline). Each restart lowers the baseline's BIC by more than the margin; at most
-    // kBaselineRestarts, a bound on the cost only.
-    constexpr int kBaselineRestarts = 3;
-    if (L.opt.heldOutRestart && L.spec.effects.empty() && L.baselineRestarts < kBaselineRestarts &&
-        restartFromCandidates(L, tried)) {
-        ++L.baselineRestarts;
-        L.scores.clear();
+    // The current model's guard against its own local minimum (in round 1 the baseline's).
+    // Each restart lowers the current model's BIC by more than the margin; at most
+    // kRestarts per round, a bound on the cost only. The round's scores are dropped: it is
+    // fitted again on the refitted model.
+    constexpr int kRestarts = 3;
+    if (L.opt.heldOutRestart && L.roundRestarts < kRestarts && restartFromCandidates(L, tried)) {
+        ++L.roundRestarts;
+        for (const std::string& c : cands)
+            if (std::find(L.spec.effects.begin(), L.spec.effects.end(), c) == L.spec.effects.end()) L.scores.erase(c);
         return runRound(L, number, cands);
     }
+    L.roundRestarts = 0;
     std::sort(tried.begin(), tried.end(), [](const auto& a, const auto& b) { return a.sc.deltaBic < b.sc.deltaBic; });
     ModelErrors me;
     double heldOutRef = 0;

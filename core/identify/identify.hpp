@@ -227,6 +227,9 @@ struct AddedEffect {
     // Candidates that trade off with this effect (selection test 0): the data cannot tell them
     // apart from it, so this effect's size may stand for them too.
     std::vector<std::string> confoundedWith;
+    // Set when a later round found that the model with this effect (the last one added before that
+    // round) had stopped in a worse minimum and refitted it (restartFromCandidates): what was found.
+    std::string note;
 };
 
 // Per run, for plots: measured and predicted force before and after (fit window).

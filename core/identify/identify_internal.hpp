@@ -88,6 +88,9 @@ struct FitOutcome {
     double ss = 0, count = 0;   // over the fitted runs
     int nFree = 0;
     FitResult fit;
+    // Pooled NRMSE over the fitted runs (each residual already divided by its run's force RMS);
+    // `none` without residuals.
+    double nrmse(double none = kNaN) const { return count > 0 ? std::sqrt(ss / count) : none; }
 };
 
 // fn(i) for i in [0, n) on every core (each i writes only its own results, so the outcome does

@@ -79,6 +79,7 @@ nlohmann::json toJson(const IdentifyResult& r) {
                          {"held_out_nrmse_before", num(e.heldOutBefore)},
                          {"held_out_nrmse_after", num(e.heldOutAfter)},
                          {"confounded_with", e.confoundedWith}});
+        if (!e.note.empty()) added.back()["note"] = e.note;
     }
     j["effects_added"] = added;
     nlohmann::json cands = nlohmann::json::array();

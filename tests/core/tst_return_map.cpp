@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/friction/friction_law.hpp"
+#include "core/friction/slip_newton.hpp"
 #include "core/integrate/dynamics.hpp"
 #include "core/integrate/prescribed.hpp"
 #include "physics_helpers.hpp"
@@ -33,6 +34,46 @@ LawState slideAt(const RateStateLaw& law, double tN, LawState s, double V, doubl
 class TstReturnMap : public QObject {
     Q_OBJECT
 private slots:
+    // The shared slip solve (slip_newton.hpp) on a residual of the return map's shape,
+    // R(x) = a − k x − c (1 − e^{−x/d}), strictly decreasing with R(0) = a > 0: its root to the
+    // tolerance from the known start, from warm starts on either side of it (and one outside the
+    // bracket, ignored), and through the bisection safeguard when R' is given with the wrong sign
+    // (a Newton step out of the bracket).
+    void sharedSlipSolveFindsTheRoot() {
+        const double a = 5.0, k = 1e3, c = 2.0, d = 1e-3;
+        long evals = 0;
+        auto eval = [&](double x, double& R, double& dR) {
+            ++evals;
+            const double e = std::exp(-x / d);
+            R = a - k * x - c * (1.0 - e);
+            dR = -k - c * e / d;
+        };
+        const double ftol = 1e-13 * a, hi = a / k;
+        double Rhi = 0, dRhi = 0;
+        eval(hi, Rhi, dRhi);
+        QVERIFY(Rhi < 0.0);
+        double R0 = 0, dR0 = 0;
+        eval(0.0, R0, dR0);
+        for (const double hint : {0.0, 0.3 * hi, 0.9 * hi, 2.0 * hi}) {
+            evals = 0;
+            const SlipRoot r = solveSlip(eval, 0.0, R0, dR0, 0.0, hi, hint, ftol);
+            QVERIFY(r.converged);
+            QVERIFY(r.iterations >= 1 && r.iterations <= 12);
+            QCOMPARE(long(r.iterations), evals);  // every iteration is one evaluation
+            double R = 0, dR = 0;
+            eval(r.x, R, dR);
+            QVERIFY2(std::abs(R) <= ftol, qPrintable(QString::number(R)));
+            QCOMPARE(r.R, R);
+            QCOMPARE(r.dR, dR);
+        }
+        // A slope of the wrong sign at the start sends Newton out of the bracket: bisection.
+        const SlipRoot r = solveSlip(eval, 0.0, R0, +1.0, 0.0, hi, 0.0, ftol);
+        QVERIFY(r.converged);
+        QVERIFY(r.x > 0.0 && r.x < hi);
+        double R = 0, dR = 0;
+        eval(r.x, R, dR);
+        QVERIFY(std::abs(R) <= ftol);
+    }
     // Eq. 5: in steady sliding Ḟ = 0 and α̇ = 0, so λ̇ = |V|, α = −C2|V| and Φ = η t_N |V|:
     //   |F|/t_N = μ + K1(−C2|V|) + η|V|.
     // Backward Euler has exactly this fixed point (Δλ = VΔt, α(1+Δλ/D_c) = α − C2Δλ²/(D_cΔt)
