@@ -82,6 +82,11 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
               << "\nafter:  fit NRMSE " << res.after.fitNrmse << ", held-out NRMSE " << res.after.validationNrmse
               << "\nunexplained structure: " << (res.unexplained ? "yes" : "no") << "\nwall time " << res.wallTime_s
               << " s, " << res.fits << " fits\n";
+    for (const BoundVerdict& b : res.baselineBounds)
+        std::cout << "baseline " << b.name << " ended on its " << b.side << " bound " << b.bound << ": "
+                  << (b.solverFailure ? "a solver failure (a second start from " : "the data's answer (a second start from ")
+                  << b.retryStart << " ended at " << b.retryValue << ", BIC lower by " << b.bicGain
+                  << (b.solverFailure ? "; refitted there)\n" : ", not more than the margin)\n");
     for (const auto& e : res.effectsAdded)
         for (const std::string& c : e.confoundedWith)
             std::cout << "confounded: " << c << " trades off with " << e.name << " (not added; " << e.name
@@ -134,9 +139,10 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
                   "the solver's Jacobian by forward differences (default: p residual runs per Jacobian) or by central "
                   "differences (2p, slower); standard errors and leave-one-run-out refits use central differences either way")->capture_default_str();
     cmd->add_flag("--held-out-restart,!--no-held-out-restart", o->req.options.heldOutRestart,
-                  "refit the baseline, and a candidate before it is judged, from a leave-one-run-out refit's point "
-                  "when that point fits all runs better than the full fit by more than --bic-margin in BIC (the full "
-                  "fit stopped in a worse minimum); on by default")->capture_default_str();
+                  "refit the baseline, and a candidate before it is judged, from a leave-one-run-out refit's point, "
+                  "and the current model from a round's candidate's point with its effect removed, when that point fits "
+                  "all runs better than the fit by more than --bic-margin in BIC (the fit stopped in a worse minimum); "
+                  "on by default")->capture_default_str();
     cmd->add_option("--dynamics-residual", o->req.dynamicsResidual,
                     "dynamics set-up: equation-error (default: the law run along the measured slip, every effect applicable, "
                     "+ the rig's equation of motion), auto (contact effects scored on re-initialised simulated segments; "

@@ -181,7 +181,13 @@ void IdentifyLoopTab::showOutcome(const IdentifyOutcome& o) {
 
 void IdentifyLoopTab::showBeforeAfter(const IdentifyResult& r, const QStringList& added) {
     beforeAfter_->setRowCount(2);
-    setCell(beforeAfter_, 0, 0, tr("before (baseline)"));
+    // A baseline parameter on its bound, and what a second start made of it (the full text in the tooltip).
+    QStringList bounds;
+    for (const BoundVerdict& b : r.baselineBounds)
+        bounds << (b.solverFailure ? tr("%1 left its bound from a second start") : tr("%1 on its bound: the data's answer"))
+                      .arg(QString::fromStdString(b.name));
+    setCell(beforeAfter_, 0, 0, bounds.isEmpty() ? tr("before (baseline)") : tr("before (baseline; %1)").arg(bounds.join("; ")),
+            QString::fromStdString(r.baselineNote));
     setCell(beforeAfter_, 0, 1, formatNrmse(r.before.fitNrmse));
     setCell(beforeAfter_, 0, 2, formatNrmse(r.before.validationNrmse));
     setCell(beforeAfter_, 1, 0, added.isEmpty() ? tr("after (unchanged)") : tr("after (+ %1)").arg(added.join(", ")));

@@ -52,7 +52,8 @@ LawState ExtendedLaw::initialState(const RunContext& ctx) const {
 //   R(Δλ) = a − ε Δλ − Y(α_{n+1}(Δλ)) − η t_N Δλ/Δt = 0,
 //   α_{n+1} = (α_n − C2 Δλ²/(D_c Δt)) / (1 + Δλ/D_c)                        (2), BE
 //   or, StateStep::ConstantRate, α_{n+1} = −C2 V + (α_n + C2 V) e^{−Δλ/D_c}, V = Δλ/Δt,
-// bracketed by [0, a/ε] and solved by Newton safeguarded with bisection.
+// bracketed by [0, a/ε] and solved by the rate-state law's own safeguarded Newton (solveSlip,
+// friction/slip_newton.hpp).
 // frictional_lag: the strength is the lagged Y_act, updated exactly over the step with Y_law
 // linear in time (FrictionalLag::hold): Y_act,n+1 = Y_b + w Y_law(α_{n+1}), Y_b = E Y_act,n +
 // (q − E) Y_law,n. In R this is the law's own equation with t_N(μ_eff + h) → Y_b + w t_N(μ_eff + h)

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "identify_internal.hpp"
+#include "identify_loop.hpp"
 
 namespace stickslip::identify {
 
@@ -51,51 +52,6 @@ double slipEpisodes(const Context& cx, const std::vector<size_t>& fitIdx, double
     }
     return episodes;
 }
-
-// A candidate fitted in a round: its score, its fit and the model it extends to.
-struct Tried {
-    CandidateScore sc;
-    FitOutcome fit;
-    Spec spec;
-    double bicBase = 0;  // the criterion of the model it extends
-};
-
-// The loop's state: the current model, its fit, errors and diagnostics, and every score so far.
-struct Loop {
-    Loop(Context& c, const IdentifyOptions& o, IdentifyResult& r) : cx(c), opt(o), res(r) {}
-    Context& cx;
-    const IdentifyOptions& opt;
-    IdentifyResult& res;
-    std::vector<size_t> fitIdx, valIdx;
-    double episodes = 0, segEpisodes = 0;
-    Spec spec;
-    FitOutcome cur;
-    Diagnostics curDiag;
-    ModelErrors curErrors;
-    double curHeldOut = 0;
-    std::vector<std::vector<double>> predBefore;
-    std::map<std::string, CandidateScore> scores;
-    int roundRestarts = 0;  // restartFromCandidates taken in the current round
-    Spec baseSpec;             // the baseline as adopted (adoptBaseline), for the self-test
-    FitOutcome baseFit;
-
-    bool cancelled() const { return opt.cancel && opt.cancel->load(); }
-    void progress(const std::string& s, double f) const {
-        if (opt.progress) opt.progress(s, f);
-    }
-    // The penalised criterion with the effective sample count capped by the independent units
-    // (slip episodes, or segments with the segment residual).
-    double bicOf(const FitOutcome& f, const Spec& s, double tauInt) const { return bicAt(f.ss, f, s, tauInt); }
-    // The same criterion for the model of `f` at another sum of squares `ss` (same data, same
-    // free parameters).
-    double bicAt(double ss, const FitOutcome& f, const Spec& s, double tauInt) const {
-        const double cap = std::min(f.count / std::max(tauInt, 1.0), s.segments ? std::max(segEpisodes, 2.0) : episodes);
-        return bic(ss, f.count, cap, f.nFree);
-    }
-    std::string residualName(const Spec& s) const {
-        return !cx.anyDynamics ? std::string("prescribed") : s.segments ? std::string("segments") : std::string("equation_error");
-    }
-};
 
 // The candidate's figures from its fit: ΔBIC against the model it extends, fit error, its
 // parameters and how its size trades off with the others.
@@ -141,82 +97,6 @@ struct Round {
     }
 };
 
-// The core both restart guards share: the best of `points` (the model `spec` evaluated at each)
-// below `fit`'s sum of squares, the BIC it gains, and, when that gain is evidence on the scale the
-// loop asks of an effect (restartWorthIt: lower BIC by more than bicMargin, τ_int = 1, the larger
-// n_eff, so in doubt it restarts), `spec` refitted from it. A smaller gain could not change a
-// verdict and would cost a fit and the held-out refits again.
-struct RestartTry {
-    int best = -1;        // index into points; −1: none fitted better
-    double bestSS = 0, gain = 0;
-    bool worthIt = false;
-    FitOutcome refit;     // from points[best] when worthIt
-    bool lowers(const FitOutcome& fit) const { return worthIt && refit.ok && refit.ss < fit.ss; }
-};
-
-RestartTry tryRestart(Loop& L, const Spec& spec, const FitOutcome& fit, const std::vector<std::map<std::string, double>>& points,
-                      const std::function<std::string(int best)>& what) {
-    RestartTry r;
-    r.bestSS = fit.ss * (1.0 - 1e-6);
-    for (size_t i = 0; i < points.size(); ++i) {
-        const double ss = evalSS(L.cx, spec, points[i], L.fitIdx);
-        if (std::isfinite(ss) && ss < r.bestSS) r.bestSS = ss, r.best = static_cast<int>(i);
-    }
-    if (r.best < 0) return r;
-    r.gain = L.bicOf(fit, spec, 1.0) - L.bicAt(r.bestSS, fit, spec, 1.0);
-    r.worthIt = restartWorthIt(r.gain, L.opt.bicMargin);
-    if (r.worthIt) {
-        L.progress(what(r.best), 0.0);
-        r.refit = fitSpec(L.cx, spec, points[r.best], L.fitIdx, 1, L.res.fits);
-    }
-    return r;
-}
-
-// IdentifyOptions::heldOutRestart: the leave-one-run-out refits (`loo`) are warm-started from
-// the fit they check; one whose point fits all the fit runs better than that fit shows it stopped
-// in a worse minimum, and the model is refitted from the best such point (tryRestart) and kept
-// if it ends lower. The same guard for every model the loop keeps (the baseline, a candidate
-// about to be judged). True when `fit` changed; `note` says what was found either way.
-bool restartFromHeldOut(Loop& L, const Spec& spec, FitOutcome& fit, const std::vector<std::map<std::string, double>>& loo,
-                        std::string& note) {
-    RestartTry r = tryRestart(L, spec, fit, loo, [](int) { return std::string("refit from a held-out refit's point"); });
-    if (r.best < 0) return false;
-    const std::string found = "a leave-one-run-out refit's point fitted all runs at sum of squares " + std::to_string(r.bestSS) +
-                              " against the full fit's " + std::to_string(fit.ss) + " (BIC lower by " + std::to_string(r.gain);
-    if (!r.worthIt) {
-        note = found + ", not more than the margin " + std::to_string(L.opt.bicMargin) + "): the full fit kept";
-        return false;
-    }
-    if (!r.lowers(fit)) return false;
-    note = found + "): the full fit stopped in a worse minimum and was refitted from that point (" + std::to_string(r.refit.ss) + ")";
-    fit = std::move(r.refit);
-    return true;
-}
-
-// Makes L.cur the baseline: its held-out errors (with the held-out restart guard), diagnostics
-// and the "before" figures. `note` is kept as the baseline's note when the guard finds nothing.
-void adoptBaseline(Loop& L, const std::string& note) {
-    if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
-    L.res.baselineNote = note;
-    std::vector<std::map<std::string, double>> loo;
-    L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits, &loo);
-    std::string heldOutNote;
-    if (L.opt.heldOutRestart && restartFromHeldOut(L, L.spec, L.cur, loo, heldOutNote)) {
-        if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
-        L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
-    }
-    if (!heldOutNote.empty()) L.res.baselineNote += (L.res.baselineNote.empty() ? "" : "; ") + heldOutNote;
-    L.res.baseline = L.cur.estimates;
-    L.predBefore.clear();
-    L.res.diagnosticsBefore = diagnoseModel(L.cx, L.spec, L.cur, &L.predBefore);
-    L.curDiag = L.res.diagnosticsBefore;
-    L.res.tauInt = L.curDiag.integratedAcfTime;
-    L.curHeldOut = L.res.before.validationNrmse;
-    L.curErrors = L.res.before;
-    L.baseSpec = L.spec;
-    L.baseFit = L.cur;
-}
-
 // Fits the baseline (the law alone) and records "before". False with res.message on failure.
 bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
     L.progress("baseline", 0.0);
@@ -251,6 +131,10 @@ bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
             L.res.message = "baseline fit failed: " + note;
             return false;
         }
+    }
+    if (L.opt.heldOutRestart) {
+        const std::string bounds = checkBaselineBounds(L);
+        if (!bounds.empty()) note += (note.empty() ? "" : "; ") + bounds;
     }
     adoptBaseline(L, note);
     // Segments: the independent units are the segments (each one reversal, stick and breakaway).
@@ -450,64 +334,6 @@ void addEffect(Loop& L, Round& R, Tried& chosen, const ModelErrors& me, double h
     L.res.after = me;
     L.curErrors = me;
     L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr);
-}
-
-// Makes the refitted L.cur (the baseline and the effects added so far) the current model again:
-// its held-out errors (with the held-out restart guard), diagnostics and "after", the added
-// effects' parameters, and the last added effect's held-out error after and note.
-void adoptCurrent(Loop& L, const std::string& note) {
-    std::vector<std::map<std::string, double>> loo;
-    L.curErrors = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits, &loo);
-    std::string heldOutNote;
-    if (L.opt.heldOutRestart && restartFromHeldOut(L, L.spec, L.cur, loo, heldOutNote))
-        L.curErrors = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
-    L.curHeldOut = L.curErrors.validationNrmse;
-    L.res.after = L.curErrors;
-    L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr);
-    for (AddedEffect& ae : L.res.effectsAdded) {
-        ae.params.clear();
-        for (const ParamEstimate& p : L.cur.estimates)
-            if (p.name.rfind(ae.name + ".", 0) == 0) ae.params.push_back({p.name.substr(ae.name.size() + 1), p.value, p.stderr_});
-    }
-    AddedEffect& last = L.res.effectsAdded.back();
-    last.heldOutAfter = L.curHeldOut;
-    last.note = (last.note.empty() ? "" : last.note + "; ") + note;
-    if (!heldOutNote.empty()) last.note += "; " + heldOutNote;
-}
-
-// The same guard from the other side (IdentifyOptions::heldOutRestart): every candidate
-// contains the current model (the baseline and the effects added so far; its own effect absent),
-// so a candidate's fitted point with its effect removed is a start for the current model. When
-// such a point fits the fit runs better than the current model did by more than the margin
-// (restartWorthIt), the current fit stopped in a worse minimum: it is refitted from the best such
-// point and kept if it ends lower. Otherwise every candidate would gain the current model's own
-// missed improvement and look like an effect. True when the current model changed (the round
-// must be fitted again).
-bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried) {
-    std::vector<std::map<std::string, double>> points;
-    std::vector<std::string> from;
-    for (const Tried& t : tried) {
-        if (t.spec.segments != L.spec.segments) continue;
-        std::map<std::string, double> v = t.fit.values;
-        for (auto it = v.begin(); it != v.end();)
-            it = it->first.rfind(t.sc.name + ".", 0) == 0 ? v.erase(it) : std::next(it);
-        points.push_back(std::move(v));
-        from.push_back(t.sc.name);
-    }
-    RestartTry r =
-        tryRestart(L, L.spec, L.cur, points, [&](int best) { return "refit of the baseline from " + from[best] + "'s point"; });
-    if (!r.lowers(L.cur)) return false;
-    const std::string model = L.spec.effects.empty() ? "baseline" : "model with " + L.res.effectsAdded.back().name;
-    const std::string note = "the " + from[r.best] + " fit's point with the effect removed fitted all runs at sum of squares " +
-                             std::to_string(r.bestSS) + " against the " + model + "'s " + std::to_string(L.cur.ss) +
-                             " (BIC lower by " + std::to_string(r.gain) + "): the " + model +
-                             " stopped in a worse minimum and was refitted from that point (" + std::to_string(r.refit.ss) + ")";
-    L.cur = std::move(r.refit);
-    if (L.spec.effects.empty())
-        adoptBaseline(L, L.res.baselineNote.empty() ? note : L.res.baselineNote + "; " + note);
-    else
-        adoptCurrent(L, note);
-    return true;
 }
 
 // One round: every candidate not yet in the model is fitted and scored; the best that passes

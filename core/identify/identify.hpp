@@ -147,7 +147,9 @@ struct IdentifyOptions {
     // full fit, that fits ALL the fit runs better than the full fit did shows the full fit
     // stopped in a worse minimum; if that point lowers the BIC by more than bicMargin, the
     // baseline is refitted from it and its errors recomputed. The same guard runs on a candidate
-    // at its held-out check, before it is judged (docs/identify-results.md, sessions 13 and 14).
+    // at its held-out check, before it is judged (docs/identify-results.md, sessions 13 and 14),
+    // and from the other side after every round's candidate fits: a candidate's point with its
+    // effect removed is a start for the current model (sessions 22 and 23).
     bool heldOutRestart = true;
     DynamicsResidual dynamicsResidual = DynamicsResidual::EquationError;  // see above
     int maxSegmentsPerRun = 12;      // Segments: at most this many segments per run (evenly spread)
@@ -239,6 +241,21 @@ struct RunTrace {
     std::vector<char> used;  // samples compared (dynamics: sliding only)
 };
 
+// A baseline parameter that ended on a bound of its range, and what a second start made of it
+// (IdentifyOptions::heldOutRestart): a solver failure (the start from the middle of the range
+// ended lower by more than the BIC margin, and the baseline was refitted there) or the data's
+// answer (it did not: the data push the parameter to the bound, e.g. a rate-state term they do
+// not support).
+struct BoundVerdict {
+    std::string name;
+    std::string side;           // "lower" or "upper"
+    double bound = 0;           // the bound it ended on
+    double retryStart = 0;      // the second start's value of it
+    double retryValue = 0;      // where the second start ended it
+    double bicGain = 0;         // BIC of the first fit minus the second's (> margin: solver failure)
+    bool solverFailure = false;
+};
+
 struct IdentifyResult {
     bool ok = false;
     bool cancelled = false;
@@ -246,6 +263,7 @@ struct IdentifyResult {
     std::string setup;
     std::vector<ParamEstimate> baseline;  // baseline model parameters ± stderr
     std::string baselineNote;             // what the held-out restart found (heldOutRestart): refitted, or kept and why
+    std::vector<BoundVerdict> baselineBounds;  // baseline parameters that ended on a bound, and the verdict
     std::vector<ParamEstimate> final;     // final model parameters ± stderr
     ModelErrors before, after;
     std::vector<AddedEffect> effectsAdded;

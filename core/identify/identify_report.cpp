@@ -64,6 +64,15 @@ nlohmann::json toJson(const IdentifyResult& r) {
     j["setup"] = r.setup;
     j["baseline"] = {{"model", "rate-state"}, {"parameters", toJson(r.baseline)}};
     if (!r.baselineNote.empty()) j["baseline"]["note"] = r.baselineNote;
+    for (const BoundVerdict& b : r.baselineBounds)
+        j["baseline"]["at_bound"].push_back({{"parameter", b.name},
+                                             {"side", b.side},
+                                             {"bound", num(b.bound)},
+                                             {"second_start", num(b.retryStart)},
+                                             {"second_start_ended_at", num(b.retryValue)},
+                                             {"bic_gain_of_second_start", num(b.bicGain)},
+                                             {"verdict", b.solverFailure ? "solver failure: refitted from the second start"
+                                                                         : "the data's answer"}});
     j["before"] = toJson(r.before);
     j["after"] = toJson(r.after);
     j["final_parameters"] = toJson(r.final);

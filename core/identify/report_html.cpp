@@ -147,6 +147,7 @@ std::string renderHtmlReport(const IdentifyResult& r) {
       << "<tr><td class=l>before (baseline)</td><td>" << fmt(r.before.fitNrmse) << "</td><td>" << fmt(r.before.validationNrmse)
       << "</td></tr><tr><td class=l>after</td><td>" << fmt(r.after.fitNrmse) << "</td><td>" << fmt(r.after.validationNrmse)
       << "</td></tr></table>\n";
+    if (!r.baselineNote.empty()) o << "<p>Baseline: " << htmlEscape(r.baselineNote) << ".</p>\n";
     o << "<h3>Per run</h3><table><tr><th>run</th><th>role</th><th>NRMSE before</th><th>held-out before</th>"
          "<th>NRMSE after</th><th>held-out after</th></tr>\n";
     for (size_t i = 0; i < r.before.runs.size(); ++i) {

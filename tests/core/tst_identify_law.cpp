@@ -96,6 +96,34 @@ private slots:
         QVERIFY2(r.baselineNote.find("refitted from the default law") != std::string::npos, r.baselineNote.c_str());
         QVERIFY(std::abs(r.before.fitNrmse - good.before.fitNrmse) <= 1e-3 * good.before.fitNrmse);
     }
+    // Data without the state term (C1 = 0: K1 ≡ 0) push the baseline to a bound where the term
+    // vanishes: C1 to its lower bound or v_c to its upper one (α = −V/v_c → 0; measured: v_c,
+    // 10 m/s). That bound is checked from a second start in the middle of the range, which ends
+    // on it again: reported as the data's answer, not a solver failure, and the baseline kept.
+    void aParameterOnItsBoundIsCheckedFromASecondStart() {
+        auto truth = synth::trueModel();
+        truth.law.C1 = 0.0;
+        auto o = synth::testOptions();
+        o.maxEffects = 0;
+        const IdentifyResult r = identifyEffects(synth::makeRuns(truth, 2.0, 0.02, 1), o);
+        QVERIFY2(r.ok, r.message.c_str());
+        qInfo("%s", r.baselineNote.c_str());
+        const BoundVerdict* hit = nullptr;
+        for (const BoundVerdict& b : r.baselineBounds)
+            if ((b.name == "C1" && b.side == "lower") || (b.name == "vc" && b.side == "upper")) hit = &b;
+        QVERIFY2(hit, r.baselineNote.c_str());
+        QVERIFY(!hit->solverFailure);
+        QVERIFY(std::abs(std::log(hit->retryStart / hit->bound)) > std::log(100.0));  // started far from it
+        QVERIFY(std::abs(hit->retryValue / hit->bound - 1.0) < 0.01);  // and ended on it again
+        QVERIFY2(r.baselineNote.find(hit->name + " ended on its " + hit->side + " bound") != std::string::npos,
+                 r.baselineNote.c_str());
+        QVERIFY(r.baselineNote.find("the data's answer") != std::string::npos);
+        const auto j = toJson(r);
+        bool reported = false;
+        for (const auto& b : j["baseline"]["at_bound"])
+            if (b["parameter"] == hit->name) reported = b["verdict"] == "the data's answer";
+        QVERIFY(reported);
+    }
     void noneAddsNothing() {
         const IdentifyResult r = runLoop(synth::trueModel(), 1);
         QVERIFY2(r.ok, r.message.c_str());

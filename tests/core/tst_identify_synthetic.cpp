@@ -143,6 +143,8 @@ private slots:
         // signature IdentifyOptions::heldOutRestart detects and repairs (on D16 without it:
         // 0.1336 in-sample against 0.0996 held-out; docs/identify-results.md, session 13).
         if (!r.baselineNote.empty()) qInfo("%s: %s", name.c_str(), r.baselineNote.c_str());
+        for (const AddedEffect& e : r.effectsAdded)
+            if (!e.note.empty()) qInfo("%s: model with %s: %s", name.c_str(), e.name.c_str(), e.note.c_str());
         QVERIFY2(r.before.fitNrmse <= 1.1 * r.before.validationNrmse, "baseline in-sample error above its held-out error");
         // On a set without an effect the baseline is the whole model: its held-out error is at
         // the floor the answer key's own model reaches on the same runs (issue 14 item 1; measured

@@ -1,0 +1,74 @@
+// The missing-effect loop's state (identify.cpp) and the guards that refit the current model
+// when it stopped in a worse minimum (identify_restart.cpp).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "identify_internal.hpp"
+
+namespace stickslip::identify::detail {
+
+// A candidate fitted in a round: its score, its fit and the model it extends to.
+struct Tried {
+    CandidateScore sc;
+    FitOutcome fit;
+    Spec spec;
+    double bicBase = 0;  // the criterion of the model it extends
+};
+
+// The loop's state: the current model, its fit, errors and diagnostics, and every score so far.
+struct Loop {
+    Loop(Context& c, const IdentifyOptions& o, IdentifyResult& r) : cx(c), opt(o), res(r) {}
+    Context& cx;
+    const IdentifyOptions& opt;
+    IdentifyResult& res;
+    std::vector<size_t> fitIdx, valIdx;
+    double episodes = 0, segEpisodes = 0;
+    Spec spec;
+    FitOutcome cur;
+    Diagnostics curDiag;
+    ModelErrors curErrors;
+    double curHeldOut = 0;
+    std::vector<std::vector<double>> predBefore;
+    std::map<std::string, CandidateScore> scores;
+    int roundRestarts = 0;  // restartFromCandidates taken in the current round
+    Spec baseSpec;             // the baseline as adopted (adoptBaseline), for the self-test
+    FitOutcome baseFit;
+
+    bool cancelled() const { return opt.cancel && opt.cancel->load(); }
+    void progress(const std::string& s, double f) const {
+        if (opt.progress) opt.progress(s, f);
+    }
+    // The penalised criterion with the effective sample count capped by the independent units
+    // (slip episodes, or segments with the segment residual).
+    double bicOf(const FitOutcome& f, const Spec& s, double tauInt) const { return bicAt(f.ss, f, s, tauInt); }
+    // The same criterion for the model of `f` at another sum of squares `ss` (same data, same
+    // free parameters).
+    double bicAt(double ss, const FitOutcome& f, const Spec& s, double tauInt) const {
+        const double cap = std::min(f.count / std::max(tauInt, 1.0), s.segments ? std::max(segEpisodes, 2.0) : episodes);
+        return bic(ss, f.count, cap, f.nFree);
+    }
+    std::string residualName(const Spec& s) const {
+        return !cx.anyDynamics ? std::string("prescribed") : s.segments ? std::string("segments") : std::string("equation_error");
+    }
+};
+
+// Makes L.cur the baseline: its held-out errors (with the held-out restart guard), diagnostics
+// and the "before" figures. `note` is kept as the baseline's note when the guard finds nothing.
+void adoptBaseline(Loop& L, const std::string& note);
+// IdentifyOptions::heldOutRestart from the leave-one-run-out refits `loo` of `fit` (details in
+// identify_restart.cpp). True when `fit` changed; `note` says what was found either way.
+bool restartFromHeldOut(Loop& L, const Spec& spec, FitOutcome& fit, const std::vector<std::map<std::string, double>>& loo,
+                        std::string& note);
+// Baseline parameters on a bound of their range (IdentifyOptions::heldOutRestart): each gets a
+// second start from the middle of its range; the baseline is refitted there when that ends lower
+// by more than the BIC margin (a solver failure), else the bound is the data's answer. Appends
+// the verdicts to L.res.baselineBounds; returns what was found, for the baseline's note.
+std::string checkBaselineBounds(Loop& L);
+// The same guard from the candidates of a round (details in identify_restart.cpp). True when the
+// current model changed (the round must be fitted again).
+bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried);
+
+}  // namespace stickslip::identify::detail

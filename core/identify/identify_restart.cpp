@@ -1,0 +1,203 @@
+// The guards against a current model that stopped in a worse minimum (IdentifyOptions::
+// heldOutRestart): restarts from leave-one-run-out refits and from the candidates' points, and
+// adopting a refitted baseline or current model.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "identify_loop.hpp"
+
+namespace stickslip::identify::detail {
+
+namespace {
+
+// The core both restart guards share: the best of `points` (the model `spec` evaluated at each)
+// below `fit`'s sum of squares, the BIC it gains, and, when that gain is evidence on the scale the
+// loop asks of an effect (restartWorthIt: lower BIC by more than bicMargin, τ_int = 1, the larger
+// n_eff, so in doubt it restarts), `spec` refitted from it. A smaller gain could not change a
+// verdict and would cost a fit and the held-out refits again.
+struct RestartTry {
+    int best = -1;        // index into points; −1: none fitted better
+    double bestSS = 0, gain = 0;
+    bool worthIt = false;
+    FitOutcome refit;     // from points[best] when worthIt
+    bool lowers(const FitOutcome& fit) const { return worthIt && refit.ok && refit.ss < fit.ss; }
+};
+
+RestartTry tryRestart(Loop& L, const Spec& spec, const FitOutcome& fit, const std::vector<std::map<std::string, double>>& points,
+                      const std::function<std::string(int best)>& what) {
+    RestartTry r;
+    r.bestSS = fit.ss * (1.0 - 1e-6);
+    for (size_t i = 0; i < points.size(); ++i) {
+        const double ss = evalSS(L.cx, spec, points[i], L.fitIdx);
+        if (std::isfinite(ss) && ss < r.bestSS) r.bestSS = ss, r.best = static_cast<int>(i);
+    }
+    if (r.best < 0) return r;
+    r.gain = L.bicOf(fit, spec, 1.0) - L.bicAt(r.bestSS, fit, spec, 1.0);
+    r.worthIt = restartWorthIt(r.gain, L.opt.bicMargin);
+    if (r.worthIt) {
+        L.progress(what(r.best), 0.0);
+        r.refit = fitSpec(L.cx, spec, points[r.best], L.fitIdx, 1, L.res.fits);
+    }
+    return r;
+}
+
+}  // namespace
+
+// IdentifyOptions::heldOutRestart: the leave-one-run-out refits (`loo`) are warm-started from
+// the fit they check; one whose point fits all the fit runs better than that fit shows it stopped
+// in a worse minimum, and the model is refitted from the best such point (tryRestart) and kept
+// if it ends lower. The same guard for every model the loop keeps (the baseline, a candidate
+// about to be judged). True when `fit` changed; `note` says what was found either way.
+bool restartFromHeldOut(Loop& L, const Spec& spec, FitOutcome& fit, const std::vector<std::map<std::string, double>>& loo,
+                        std::string& note) {
+    RestartTry r = tryRestart(L, spec, fit, loo, [](int) { return std::string("refit from a held-out refit's point"); });
+    if (r.best < 0) return false;
+    const std::string found = "a leave-one-run-out refit's point fitted all runs at sum of squares " + std::to_string(r.bestSS) +
+                              " against the full fit's " + std::to_string(fit.ss) + " (BIC lower by " + std::to_string(r.gain);
+    if (!r.worthIt) {
+        note = found + ", not more than the margin " + std::to_string(L.opt.bicMargin) + "): the full fit kept";
+        return false;
+    }
+    if (!r.lowers(fit)) return false;
+    note = found + "): the full fit stopped in a worse minimum and was refitted from that point (" + std::to_string(r.refit.ss) + ")";
+    fit = std::move(r.refit);
+    return true;
+}
+
+std::string checkBaselineBounds(Loop& L) {
+    std::string note;
+    std::vector<std::string> checked;
+    for (;;) {
+        // The first free parameter on a bound not yet checked (a refit may move the others).
+        const FitParameter* hit = nullptr;
+        bool upper = false;
+        const std::vector<FitParameter> ps = parameters(L.cx, L.spec, L.cur.values);
+        for (const FitParameter& p : ps) {
+            if (!p.free || std::find(checked.begin(), checked.end(), p.name) != checked.end()) continue;
+            auto it = L.cur.values.find(p.name);
+            if (it == L.cur.values.end()) continue;
+            const bool log = p.scale == ParamScale::Log;
+            const auto z = [&](double x) { return log ? std::log(x) : x; };
+            const double span = z(p.upper) - z(p.lower), zv = z(std::clamp(it->second, p.lower, p.upper));
+            // As the engine flags "at a bound" (fit.cpp): within 1e-6 of the range in its own scale.
+            if (zv - z(p.lower) < 1e-6 * span || z(p.upper) - zv < 1e-6 * span) {
+                hit = &p;
+                upper = z(p.upper) - zv < 1e-6 * span;
+                break;
+            }
+        }
+        if (!hit || L.cancelled()) return note;
+        checked.push_back(hit->name);
+        BoundVerdict b;
+        b.name = hit->name;
+        b.side = upper ? "upper" : "lower";
+        b.bound = upper ? hit->upper : hit->lower;
+        b.retryStart = hit->scale == ParamScale::Log ? std::sqrt(hit->lower * hit->upper) : 0.5 * (hit->lower + hit->upper);
+        std::map<std::string, double> start = L.cur.values;
+        start[hit->name] = b.retryStart;
+        L.progress("baseline: " + hit->name + " on its bound, a second start", 0.0);
+        FitOutcome g = fitSpec(L.cx, L.spec, start, L.fitIdx, 1, L.res.fits);
+        b.retryValue = g.ok && g.values.count(hit->name) ? g.values.at(hit->name) : kNaN;
+        b.bicGain = g.ok ? L.bicOf(L.cur, L.spec, 1.0) - L.bicOf(g, L.spec, 1.0) : kNaN;
+        b.solverFailure = g.ok && restartWorthIt(b.bicGain, L.opt.bicMargin);
+        note += std::string(note.empty() ? "" : "; ") + hit->name + " ended on its " + b.side + " bound " +
+                std::to_string(b.bound) + ": a second start from " + std::to_string(b.retryStart) + " ended at " +
+                std::to_string(b.retryValue) + " (BIC lower by " + std::to_string(b.bicGain) + "), " +
+                (b.solverFailure ? "a solver failure: the baseline was refitted there"
+                                 : "not more than the margin: the bound is the data's answer");
+        if (b.solverFailure) L.cur = std::move(g);
+        L.res.baselineBounds.push_back(b);
+    }
+}
+
+// Makes L.cur the baseline: its held-out errors (with the held-out restart guard), diagnostics
+// and the "before" figures. `note` is kept as the baseline's note when the guard finds nothing.
+void adoptBaseline(Loop& L, const std::string& note) {
+    if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
+    L.res.baselineNote = note;
+    std::vector<std::map<std::string, double>> loo;
+    L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits, &loo);
+    std::string heldOutNote;
+    if (L.opt.heldOutRestart && restartFromHeldOut(L, L.spec, L.cur, loo, heldOutNote)) {
+        if (L.cur.values.count("mu")) L.cx.muScale = L.cur.values.at("mu");
+        L.res.before = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
+    }
+    if (!heldOutNote.empty()) L.res.baselineNote += (L.res.baselineNote.empty() ? "" : "; ") + heldOutNote;
+    L.res.baseline = L.cur.estimates;
+    L.predBefore.clear();
+    L.res.diagnosticsBefore = diagnoseModel(L.cx, L.spec, L.cur, &L.predBefore);
+    L.curDiag = L.res.diagnosticsBefore;
+    L.res.tauInt = L.curDiag.integratedAcfTime;
+    L.curHeldOut = L.res.before.validationNrmse;
+    L.curErrors = L.res.before;
+    L.baseSpec = L.spec;
+    L.baseFit = L.cur;
+}
+
+namespace {
+
+// Makes the refitted L.cur (the baseline and the effects added so far) the current model again:
+// its held-out errors (with the held-out restart guard), diagnostics and "after", the added
+// effects' parameters, and the last added effect's held-out error after and note.
+void adoptCurrent(Loop& L, const std::string& note) {
+    std::vector<std::map<std::string, double>> loo;
+    L.curErrors = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits, &loo);
+    std::string heldOutNote;
+    if (L.opt.heldOutRestart && restartFromHeldOut(L, L.spec, L.cur, loo, heldOutNote))
+        L.curErrors = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
+    L.curHeldOut = L.curErrors.validationNrmse;
+    L.res.after = L.curErrors;
+    L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr);
+    for (AddedEffect& ae : L.res.effectsAdded) {
+        ae.params.clear();
+        for (const ParamEstimate& p : L.cur.estimates)
+            if (p.name.rfind(ae.name + ".", 0) == 0) ae.params.push_back({p.name.substr(ae.name.size() + 1), p.value, p.stderr_});
+    }
+    AddedEffect& last = L.res.effectsAdded.back();
+    last.heldOutAfter = L.curHeldOut;
+    last.note = (last.note.empty() ? "" : last.note + "; ") + note;
+    if (!heldOutNote.empty()) last.note += "; " + heldOutNote;
+}
+
+}  // namespace
+
+// The same guard from the other side (IdentifyOptions::heldOutRestart): every candidate
+// contains the current model (the baseline and the effects added so far; its own effect absent),
+// so a candidate's fitted point with its effect removed is a start for the current model. When
+// such a point fits the fit runs better than the current model did by more than the margin
+// (restartWorthIt), the current fit stopped in a worse minimum: it is refitted from the best such
+// point and kept if it ends lower. Otherwise every candidate would gain the current model's own
+// missed improvement and look like an effect. True when the current model changed (the round
+// must be fitted again).
+bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried) {
+    std::vector<std::map<std::string, double>> points;
+    std::vector<std::string> from;
+    for (const Tried& t : tried) {
+        if (t.spec.segments != L.spec.segments) continue;
+        std::map<std::string, double> v = t.fit.values;
+        for (auto it = v.begin(); it != v.end();)
+            it = it->first.rfind(t.sc.name + ".", 0) == 0 ? v.erase(it) : std::next(it);
+        points.push_back(std::move(v));
+        from.push_back(t.sc.name);
+    }
+    RestartTry r =
+        tryRestart(L, L.spec, L.cur, points, [&](int best) { return "refit of the baseline from " + from[best] + "'s point"; });
+    if (!r.lowers(L.cur)) return false;
+    const std::string model = L.spec.effects.empty() ? "baseline" : "model with " + L.res.effectsAdded.back().name;
+    const std::string note = "the " + from[r.best] + " fit's point with the effect removed fitted all runs at sum of squares " +
+                             std::to_string(r.bestSS) + " against the " + model + "'s " + std::to_string(L.cur.ss) +
+                             " (BIC lower by " + std::to_string(r.gain) + "): the " + model +
+                             " stopped in a worse minimum and was refitted from that point (" + std::to_string(r.refit.ss) + ")";
+    L.cur = std::move(r.refit);
+    if (L.spec.effects.empty())
+        adoptBaseline(L, L.res.baselineNote.empty() ? note : L.res.baselineNote + "; " + note);
+    else
+        adoptCurrent(L, note);
+    return true;
+}
+
+}  // namespace stickslip::identify::detail
