@@ -107,6 +107,10 @@ void IdentifyLoopTab::buildTables(QVBoxLayout* v) {
     beforeAfter_ = makeTable({tr("Model"), tr("fit NRMSE"), tr("held-out NRMSE")}, this);
     v->addWidget(new QLabel(tr("<b>Error before and after</b>"), this));
     v->addWidget(beforeAfter_);
+    baselineBounds_ = new QLabel(this);
+    baselineBounds_->setWordWrap(true);
+    baselineBounds_->hide();
+    v->addWidget(baselineBounds_);
     fitHeight(beforeAfter_, 2);
     effects_ = makeTable({tr("Effect added"), tr("ΔBIC"), tr("held-out"), tr("Parameters")}, this);
     v->addWidget(new QLabel(tr("<b>Effects added</b> (parameters ± 1σ)"), this));
@@ -181,13 +185,20 @@ void IdentifyLoopTab::showOutcome(const IdentifyOutcome& o) {
 
 void IdentifyLoopTab::showBeforeAfter(const IdentifyResult& r, const QStringList& added) {
     beforeAfter_->setRowCount(2);
-    // A baseline parameter on its bound, and what a second start made of it (the full text in the tooltip).
+    setCell(beforeAfter_, 0, 0, tr("before (baseline)"), QString::fromStdString(r.baselineNote));
+    // A baseline parameter on its bound, and what a second start made of it.
     QStringList bounds;
     for (const BoundVerdict& b : r.baselineBounds)
-        bounds << (b.solverFailure ? tr("%1 left its bound from a second start") : tr("%1 on its bound: the data's answer"))
-                      .arg(QString::fromStdString(b.name));
-    setCell(beforeAfter_, 0, 0, bounds.isEmpty() ? tr("before (baseline)") : tr("before (baseline; %1)").arg(bounds.join("; ")),
-            QString::fromStdString(r.baselineNote));
+        bounds << (b.solverFailure ? tr("%1 had stopped on its %2 bound %3: a second start from %4 ended lower (at %5); "
+                                        "refitted there (a solver failure).")
+                                   : tr("%1 ended on its %2 bound %3: a second start from %4 ended there too (%5): "
+                                        "the data's answer."))
+                      .arg(QString::fromStdString(b.name), QString::fromStdString(b.side))
+                      .arg(b.bound, 0, 'g', 4)
+                      .arg(b.retryStart, 0, 'g', 4)
+                      .arg(b.retryValue, 0, 'g', 4);
+    baselineBounds_->setText(bounds.join(" "));
+    baselineBounds_->setVisible(!bounds.isEmpty());
     setCell(beforeAfter_, 0, 1, formatNrmse(r.before.fitNrmse));
     setCell(beforeAfter_, 0, 2, formatNrmse(r.before.validationNrmse));
     setCell(beforeAfter_, 1, 0, added.isEmpty() ? tr("after (unchanged)") : tr("after (+ %1)").arg(added.join(", ")));

@@ -42,6 +42,7 @@ public:
     QTableWidget* candidateTable() const { return candidates_; }
     SelfTestView* selfTestView() const { return selfTest_; }
     QLabel* unexplainedLabel() const { return unexplained_; }
+    QLabel* baselineBoundsLabel() const { return baselineBounds_; }
 
 private:
     void buildFreeLaw(QFormLayout* form);
@@ -61,6 +62,7 @@ private:
     QTableWidget* candidates_ = nullptr;
     SelfTestView* selfTest_ = nullptr;
     QLabel* unexplained_ = nullptr;
+    QLabel* baselineBounds_ = nullptr;  // baseline parameters that ended on a bound, and the verdict
 };
 
 }  // namespace stickslip::gui

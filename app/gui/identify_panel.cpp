@@ -148,6 +148,7 @@ QTableWidget* IdentifyPanel::effectsTable() const { return loop_->effectsTable()
 QTableWidget* IdentifyPanel::candidateTable() const { return loop_->candidateTable(); }
 SelfTestView* IdentifyPanel::selfTestView() const { return loop_->selfTestView(); }
 QLabel* IdentifyPanel::unexplainedLabel() const { return loop_->unexplainedLabel(); }
+QLabel* IdentifyPanel::baselineBoundsLabel() const { return loop_->baselineBoundsLabel(); }
 QTabWidget* IdentifyPanel::plotTabs() const { return plots_->tabs(); }
 widgets::SeriesPlot* IdentifyPanel::overlayPlot() const { return plots_->overlayPlot(); }
 QPushButton* IdentifyPanel::fitRunButton() const { return fit_->runButton(); }

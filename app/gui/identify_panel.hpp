@@ -77,6 +77,7 @@ public:
     QTableWidget* candidateTable() const;
     SelfTestView* selfTestView() const;
     QLabel* unexplainedLabel() const;
+    QLabel* baselineBoundsLabel() const;
     QTabWidget* controlTabs() const { return controls_; }
     QTabWidget* plotTabs() const;
     widgets::SeriesPlot* overlayPlot() const;

@@ -244,6 +244,21 @@ private slots:
         QCOMPARE(cell(ba, 0, 2), formatNrmse(core.before.validationNrmse));
         QCOMPARE(cell(ba, 1, 1), formatNrmse(core.after.fitNrmse));
         QCOMPARE(cell(ba, 1, 2), formatNrmse(core.after.validationNrmse));
+        // The baseline's note in its row's tooltip; a parameter that ended on a bound, and the
+        // verdict of its second start, in the line below the table.
+        QCOMPARE(ba->item(0, 0)->toolTip(), QString::fromStdString(core.baselineNote));
+        const QString bounds = p.baselineBoundsLabel()->text();
+        QCOMPARE(bounds.isEmpty(), core.baselineBounds.empty());
+        for (const BoundVerdict& b : core.baselineBounds) {
+            QVERIFY(bounds.contains(QString::fromStdString(b.name) + (b.solverFailure ? " had stopped" : " ended on its")));
+            QVERIFY(bounds.contains(b.solverFailure ? "a solver failure" : "the data's answer"));
+        }
+        qInfo("baseline bounds: %s", qPrintable(bounds));
+        if (const QByteArray shot = qgetenv("IDENTIFY_LOOP_SHOT"); !shot.isEmpty()) {
+            p.controlTabs()->setCurrentIndex(2);  // Identify
+            p.resize(1100, 1300);
+            QVERIFY(p.grab().save(QString::fromLocal8Bit(shot)));
+        }
         QCOMPARE(p.candidateTable()->rowCount(), static_cast<int>(core.candidates.size()));
         for (size_t i = 0; i < core.candidates.size(); ++i)  // the reports' verdict text, trade-offs included
             QCOMPARE(cell(p.candidateTable(), static_cast<int>(i), 4), QString::fromStdString(verdictOf(core.candidates[i])));
