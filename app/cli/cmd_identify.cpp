@@ -84,9 +84,9 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
               << " s, " << res.fits << " fits\n";
     for (const BoundVerdict& b : res.baselineBounds)
         std::cout << "baseline " << b.name << " ended on its " << b.side << " bound " << b.bound << ": "
-                  << (b.solverFailure ? "a solver failure (a second start from " : "the data's answer (a second start from ")
-                  << b.retryStart << " ended at " << b.retryValue << ", BIC lower by " << b.bicGain
-                  << (b.solverFailure ? "; refitted there)\n" : ", not more than the margin)\n");
+                  << (b.solverFailure ? "a solver failure" : "the data's answer") << " (a second start from " << b.retryStart
+                  << " ended at " << b.retryValue << ", BIC lower by " << b.bicGain
+                  << (b.refitted ? "; the baseline refitted there)\n" : ")\n");
     for (const auto& e : res.effectsAdded)
         for (const std::string& c : e.confoundedWith)
             std::cout << "confounded: " << c << " trades off with " << e.name << " (not added; " << e.name

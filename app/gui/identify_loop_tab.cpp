@@ -189,10 +189,12 @@ void IdentifyLoopTab::showBeforeAfter(const IdentifyResult& r, const QStringList
     // A baseline parameter on its bound, and what a second start made of it.
     QStringList bounds;
     for (const BoundVerdict& b : r.baselineBounds)
-        bounds << (b.solverFailure ? tr("%1 had stopped on its %2 bound %3: a second start from %4 ended lower (at %5); "
-                                        "refitted there (a solver failure).")
-                                   : tr("%1 ended on its %2 bound %3: a second start from %4 ended there too (%5): "
-                                        "the data's answer."))
+        bounds << (b.solverFailure ? tr("%1 had stopped on its %2 bound %3: a second start from %4 left it (%5) and ended "
+                                        "lower; refitted there (a solver failure).")
+                   : b.refitted    ? tr("%1 ended on its %2 bound %3: a second start from %4 ended there too (%5): the "
+                                        "data's answer; that start was lower elsewhere, and the baseline was refitted there.")
+                                   : tr("%1 ended on its %2 bound %3: a second start from %4 ended at %5, no lower: the "
+                                        "data's answer."))
                       .arg(QString::fromStdString(b.name), QString::fromStdString(b.side))
                       .arg(b.bound, 0, 'g', 4)
                       .arg(b.retryStart, 0, 'g', 4)

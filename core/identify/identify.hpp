@@ -241,19 +241,21 @@ struct RunTrace {
     std::vector<char> used;  // samples compared (dynamics: sliding only)
 };
 
-// A baseline parameter that ended on a bound of its range, and what a second start made of it
-// (IdentifyOptions::heldOutRestart): a solver failure (the start from the middle of the range
-// ended lower by more than the BIC margin, and the baseline was refitted there) or the data's
-// answer (it did not: the data push the parameter to the bound, e.g. a rate-state term they do
-// not support).
+// A baseline parameter that ended on a bound of its range, and what a second start from the
+// middle of the range made of it (IdentifyOptions::heldOutRestart). When the second start ends
+// lower by more than the BIC margin the baseline is refitted there (the first fit had stopped in
+// a worse minimum); the bound itself was a solver failure when the second start also left it,
+// and the data's answer when it ended on it again (the data push the parameter there, e.g. a
+// rate-state term they do not support).
 struct BoundVerdict {
     std::string name;
     std::string side;           // "lower" or "upper"
     double bound = 0;           // the bound it ended on
     double retryStart = 0;      // the second start's value of it
     double retryValue = 0;      // where the second start ended it
-    double bicGain = 0;         // BIC of the first fit minus the second's (> margin: solver failure)
-    bool solverFailure = false;
+    double bicGain = 0;         // BIC of the first fit minus the second's
+    bool refitted = false;      // bicGain beyond the margin: the baseline is the second start's
+    bool solverFailure = false; // refitted, and the second start left the bound
 };
 
 struct IdentifyResult {

@@ -71,8 +71,8 @@ nlohmann::json toJson(const IdentifyResult& r) {
                                              {"second_start", num(b.retryStart)},
                                              {"second_start_ended_at", num(b.retryValue)},
                                              {"bic_gain_of_second_start", num(b.bicGain)},
-                                             {"verdict", b.solverFailure ? "solver failure: refitted from the second start"
-                                                                         : "the data's answer"}});
+                                             {"refitted_from_second_start", b.refitted},
+                                             {"verdict", b.solverFailure ? "solver failure" : "the data's answer"}});
     j["before"] = toJson(r.before);
     j["after"] = toJson(r.after);
     j["final_parameters"] = toJson(r.final);

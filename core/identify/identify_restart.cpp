@@ -103,13 +103,23 @@ std::string checkBaselineBounds(Loop& L) {
         FitOutcome g = fitSpec(L.cx, L.spec, start, L.fitIdx, 1, L.res.fits);
         b.retryValue = g.ok && g.values.count(hit->name) ? g.values.at(hit->name) : kNaN;
         b.bicGain = g.ok ? L.bicOf(L.cur, L.spec, 1.0) - L.bicOf(g, L.spec, 1.0) : kNaN;
-        b.solverFailure = g.ok && restartWorthIt(b.bicGain, L.opt.bicMargin);
+        b.refitted = g.ok && restartWorthIt(b.bicGain, L.opt.bicMargin);
+        const double zr = hit->scale == ParamScale::Log ? std::log(b.retryValue) : b.retryValue;
+        const double zb = hit->scale == ParamScale::Log ? std::log(b.bound) : b.bound;
+        const double span = hit->scale == ParamScale::Log ? std::log(hit->upper / hit->lower) : hit->upper - hit->lower;
+        const bool leftBound = std::isfinite(zr) && std::abs(zr - zb) >= 1e-6 * span;
+        b.solverFailure = b.refitted && leftBound;
         note += std::string(note.empty() ? "" : "; ") + hit->name + " ended on its " + b.side + " bound " +
                 std::to_string(b.bound) + ": a second start from " + std::to_string(b.retryStart) + " ended at " +
                 std::to_string(b.retryValue) + " (BIC lower by " + std::to_string(b.bicGain) + "), " +
-                (b.solverFailure ? "a solver failure: the baseline was refitted there"
-                                 : "not more than the margin: the bound is the data's answer");
-        if (b.solverFailure) L.cur = std::move(g);
+                (b.solverFailure ? "off the bound and lower by more than the margin: a solver failure, the baseline "
+                                   "was refitted there"
+                 : b.refitted    ? "on the bound again: the bound is the data's answer; lower by more than the "
+                                   "margin elsewhere, so the baseline was refitted there"
+                 : leftBound     ? "off the bound but not lower by more than the margin: the bound is the data's "
+                                   "answer within what the data tell apart"
+                                 : "on the bound again: the bound is the data's answer");
+        if (b.refitted) L.cur = std::move(g);
         L.res.baselineBounds.push_back(b);
     }
 }

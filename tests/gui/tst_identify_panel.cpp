@@ -251,6 +251,7 @@ private slots:
         QCOMPARE(bounds.isEmpty(), core.baselineBounds.empty());
         for (const BoundVerdict& b : core.baselineBounds) {
             QVERIFY(bounds.contains(QString::fromStdString(b.name) + (b.solverFailure ? " had stopped" : " ended on its")));
+            QCOMPARE(bounds.contains("refitted there"), b.refitted);
             QVERIFY(bounds.contains(b.solverFailure ? "a solver failure" : "the data's answer"));
         }
         qInfo("baseline bounds: %s", qPrintable(bounds));
