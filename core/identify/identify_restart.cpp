@@ -45,6 +45,19 @@ RestartTry tryRestart(Loop& L, const Spec& spec, const FitOutcome& fit, const st
     return r;
 }
 
+// Which bound of its range `v` is on: −1 lower, +1 upper, 0 neither (or not finite). On a bound
+// means within 1e-6 of the range in the parameter's own scale, as the engine flags "at a bound"
+// (fit.cpp).
+int boundSide(const FitParameter& p, double v) {
+    if (!std::isfinite(v)) return 0;
+    const bool log = p.scale == ParamScale::Log;
+    const auto z = [&](double x) { return log ? std::log(x) : x; };
+    const double span = z(p.upper) - z(p.lower), zv = z(std::clamp(v, p.lower, p.upper));
+    if (z(p.upper) - zv < 1e-6 * span) return 1;
+    if (zv - z(p.lower) < 1e-6 * span) return -1;
+    return 0;
+}
+
 }  // namespace
 
 // IdentifyOptions::heldOutRestart: the leave-one-run-out refits (`loo`) are warm-started from
@@ -74,23 +87,19 @@ std::string checkBaselineBounds(Loop& L) {
     for (;;) {
         // The first free parameter on a bound not yet checked (a refit may move the others).
         const FitParameter* hit = nullptr;
-        bool upper = false;
+        int side = 0;
         const std::vector<FitParameter> ps = parameters(L.cx, L.spec, L.cur.values);
         for (const FitParameter& p : ps) {
             if (!p.free || std::find(checked.begin(), checked.end(), p.name) != checked.end()) continue;
             auto it = L.cur.values.find(p.name);
             if (it == L.cur.values.end()) continue;
-            const bool log = p.scale == ParamScale::Log;
-            const auto z = [&](double x) { return log ? std::log(x) : x; };
-            const double span = z(p.upper) - z(p.lower), zv = z(std::clamp(it->second, p.lower, p.upper));
-            // As the engine flags "at a bound" (fit.cpp): within 1e-6 of the range in its own scale.
-            if (zv - z(p.lower) < 1e-6 * span || z(p.upper) - zv < 1e-6 * span) {
+            if ((side = boundSide(p, it->second)) != 0) {
                 hit = &p;
-                upper = z(p.upper) - zv < 1e-6 * span;
                 break;
             }
         }
         if (!hit || L.cancelled()) return note;
+        const bool upper = side > 0;
         checked.push_back(hit->name);
         BoundVerdict b;
         b.name = hit->name;
@@ -104,10 +113,7 @@ std::string checkBaselineBounds(Loop& L) {
         b.retryValue = g.ok && g.values.count(hit->name) ? g.values.at(hit->name) : kNaN;
         b.bicGain = g.ok ? L.bicOf(L.cur, L.spec, 1.0) - L.bicOf(g, L.spec, 1.0) : kNaN;
         b.refitted = g.ok && restartWorthIt(b.bicGain, L.opt.bicMargin);
-        const double zr = hit->scale == ParamScale::Log ? std::log(b.retryValue) : b.retryValue;
-        const double zb = hit->scale == ParamScale::Log ? std::log(b.bound) : b.bound;
-        const double span = hit->scale == ParamScale::Log ? std::log(hit->upper / hit->lower) : hit->upper - hit->lower;
-        const bool leftBound = std::isfinite(zr) && std::abs(zr - zb) >= 1e-6 * span;
+        const bool leftBound = std::isfinite(b.retryValue) && boundSide(*hit, b.retryValue) != side;
         b.solverFailure = b.refitted && leftBound;
         note += std::string(note.empty() ? "" : "; ") + hit->name + " ended on its " + b.side + " bound " +
                 std::to_string(b.bound) + ": a second start from " + std::to_string(b.retryStart) + " ended at " +
@@ -195,7 +201,7 @@ bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried) {
         from.push_back(t.sc.name);
     }
     RestartTry r =
-        tryRestart(L, L.spec, L.cur, points, [&](int best) { return "refit of the baseline from " + from[best] + "'s point"; });
+        tryRestart(L, L.spec, L.cur, points, [&](int best) { return "refit of the current model from " + from[best] + "'s point"; });
     if (!r.lowers(L.cur)) return false;
     const std::string model = L.spec.effects.empty() ? "baseline" : "model with " + L.res.effectsAdded.back().name;
     const std::string note = "the " + from[r.best] + " fit's point with the effect removed fitted all runs at sum of squares " +
