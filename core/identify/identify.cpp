@@ -4,7 +4,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -60,9 +59,7 @@ void scoreFit(const Loop& L, Tried& t) {
     const FitOutcome& f = t.fit;
     sc.deltaBic = L.bicOf(f, t.spec, t.spec.segments == L.spec.segments ? L.curDiag.integratedAcfTime : 1.0) - t.bicBase;
     sc.fitNrmse = f.nrmse(0.0);
-    sc.params.clear();
-    for (const ParamEstimate& p : f.estimates)
-        if (p.name.rfind(sc.name + ".", 0) == 0) sc.params.push_back({p.name.substr(sc.name.size() + 1), p.value, p.stderr_});
+    sc.params = effectParams(f, sc.name);
     sc.sizeCorrelation = sizeCorrelations(f.fit, sc.name);
     sc.tradesOffWithBaseline = baselineTradeOff(sc, L.opt.confoundedVif);
 }

@@ -55,6 +55,15 @@ struct Loop {
     }
 };
 
+// The parameters of `effect` in a fit, without the "effect." prefix (a candidate's or an added
+// effect's row in the report).
+inline std::vector<ParamEstimate> effectParams(const FitOutcome& f, const std::string& effect) {
+    std::vector<ParamEstimate> out;
+    for (const ParamEstimate& p : f.estimates)
+        if (p.name.rfind(effect + ".", 0) == 0) out.push_back({p.name.substr(effect.size() + 1), p.value, p.stderr_});
+    return out;
+}
+
 // Makes L.cur the baseline: its held-out errors (with the held-out restart guard), diagnostics
 // and the "before" figures. `note` is kept as the baseline's note when the guard finds nothing.
 void adoptBaseline(Loop& L, const std::string& note);

@@ -168,11 +168,7 @@ void adoptCurrent(Loop& L, const std::string& note) {
     L.curHeldOut = L.curErrors.validationNrmse;
     L.res.after = L.curErrors;
     L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr);
-    for (AddedEffect& ae : L.res.effectsAdded) {
-        ae.params.clear();
-        for (const ParamEstimate& p : L.cur.estimates)
-            if (p.name.rfind(ae.name + ".", 0) == 0) ae.params.push_back({p.name.substr(ae.name.size() + 1), p.value, p.stderr_});
-    }
+    for (AddedEffect& ae : L.res.effectsAdded) ae.params = effectParams(L.cur, ae.name);
     AddedEffect& last = L.res.effectsAdded.back();
     last.heldOutAfter = L.curHeldOut;
     last.note = (last.note.empty() ? "" : last.note + "; ") + note;
