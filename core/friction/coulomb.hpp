@@ -21,6 +21,9 @@ struct CoulombLaw {
     static constexpr const char* kKey = "coulomb";
     static constexpr const char* kLabel = "Coulomb";
     static constexpr bool kViscous = false;
+    // While Φ ≤ 0 the force is F_n + ε_T Δg exactly and the state does not evolve (Eqs. 1–4):
+    // the integrator may step the stuck rig in closed form (integrate/stuck_flow.hpp).
+    static constexpr bool kElasticStick = true;
     static std::vector<ParamDef> paramRows();  // μ and ε_T: shared with the rate-state law
     static double* field(Params& p, std::string_view key);
 

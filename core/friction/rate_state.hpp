@@ -33,6 +33,9 @@ struct RateStateLaw {
     static constexpr const char* kKey = "rate-state";     // --model, run files, sessions
     static constexpr const char* kLabel = "rate-state";   // legends
     static constexpr bool kViscous = true;                // slip rate follows the overstress (Eq. 3)
+    // While Φ ≤ 0 the force is F_n + ε_T Δg exactly and the state does not evolve (Eqs. 1–4):
+    // the integrator may step the stuck rig in closed form (integrate/stuck_flow.hpp).
+    static constexpr bool kElasticStick = true;
     // The law's rows of the parameter table (param_table.hpp), with `field` left empty: the
     // registry writes them through field().
     static std::vector<ParamDef> paramRows();

@@ -8,8 +8,10 @@
 #include <numbers>
 #include <optional>
 #include <utility>
+#include <variant>
 #include <vector>
 
+#include "stuck_flow.hpp"
 #include "trbdf2.hpp"
 
 namespace stickslip {
@@ -41,11 +43,23 @@ DynState denseState(const DynamicsModel& m, const DynState& a, const DynState& b
     s.t = t;
     s.x = h00 * a.x + h10 * h * a.v + h01 * b.x + h11 * h * b.v;
     s.v = h00 * a.v + h10 * h * a.a + h01 * b.v + h11 * h * b.a;
+    s.u = m.stage.displacement(t);
+    s.law.alpha = a.law.alpha + th * (b.law.alpha - a.law.alpha);
+    // Stuck throughout a step of a law elastic in stick, F = F_a + ε_T (Δu − Δx) exactly (Eq. 4
+    // with λ̇ = 0) and ẍ is Eq. 8's: both follow the x interpolant, as they must over the long
+    // closed-form stuck steps (stuck_flow.hpp), which span ringing a line would cut across.
+    const double eps = std::visit([](const auto& law) {
+        if constexpr (requires { std::decay_t<decltype(law)>::kElasticStick; }) return law.epsT();
+        else return 0.0;
+    }, m.law);
+    if (a.stuck && b.stuck && eps > 0.0) {
+        s.law.force_N = a.law.force_N + eps * ((s.u - a.u) - (s.x - a.x));
+        s.a = (s.law.force_N - m.rig.damping_Ns_per_m * s.v - m.rig.stiffness_N_per_m * s.x) / m.rig.mass_kg;
+        return s;
+    }
     // a from the derivative of the x interpolant would lose an order; interpolate linearly.
     s.a = a.a + th * (b.a - a.a);
-    s.u = m.stage.displacement(t);
     s.law.force_N = a.law.force_N + th * (b.law.force_N - a.law.force_N);
-    s.law.alpha = a.law.alpha + th * (b.law.alpha - a.law.alpha);
     return s;
 }
 
@@ -89,6 +103,13 @@ constexpr double kViscousVelocityWeight = 3.0;
 // guessed from the attempted step, so that it contains the stop although the guess, read off a
 // step that crossed it, is only approximate.
 constexpr double kStopOvershoot = 0.02;
+// Share of the tolerance given to the dense output of a closed-form stuck step (stuck_flow.hpp):
+// the step is exact, so its length is set by the cubic Hermite interpolant between its ends.
+constexpr double kHermiteShare = 0.25;
+// Sub-intervals on which a closed-form stuck step is checked for a slip onset when the bound
+// over the whole step cannot exclude one.
+constexpr int kStuckChecks = 8;
+
 // locate()'s answer for a switch that the step may contain (judged by the error control alone).
 constexpr double kSwitchInside = -2.0;
 
@@ -130,10 +151,31 @@ public:
         if constexpr (HasAlphaRate<Law>) tr_ = o.trBdf2;
         if constexpr (requires { law.params.r; }) alphaScale_ = law.params.r;
         omega_ = harmonic_ ? m.stage.omega() : 0.0;
+        if constexpr (requires { Law::kElasticStick; }) {
+            if (Law::kElasticStick && o.closedFormStick) {
+                flow_.emplace(m.rig, law.epsT(), m.stage);
+                if (!flow_->valid()) flow_.reset();
+                else flowSteps_.resize(kLevels);
+            }
+        }
     }
     AdaptiveReport run(DynState& s, double tEnd, const AdaptiveObserver& obs, const RunControl& ctl);
 
 private:
+    // A closed-form stuck step (stuck_flow.hpp) from a stuck state: `next` is its end (on the
+    // stuck side of a located slip onset when `onset`); `fallback`: the bounds cannot exclude an
+    // onset inside it, the scheme's step takes it at `level`.
+    struct StuckStep {
+        DynState next;
+        bool onset = false, atEnd = false, fallback = false;
+        int level = 0;
+    };
+    StuckStep stuckStep(const DynState& s, double tEnd);
+    const detail::StuckFlow::Step& flowStep(int k) {
+        auto& c = flowSteps_[static_cast<size_t>(k)];
+        if (!c) c = flow_->step(hOf(k));
+        return *c;
+    }
     double hOf(int k) const { return hTable_[static_cast<size_t>(k)]; }
     Kit<Law>& kit(int k) {
         if (!cache_[static_cast<size_t>(k)]) cache_[static_cast<size_t>(k)].emplace(m_.rig, law_, hOf(k), omega_, tr_);
@@ -266,6 +308,8 @@ private:
     std::array<double, kLevels> hTable_{};
     int kMax_ = 0;
     std::vector<std::optional<Kit<Law>>> cache_;
+    std::optional<detail::StuckFlow> flow_;  // closed-form stick (laws elastic in stick, harmonic stage)
+    std::vector<std::optional<detail::StuckFlow::Step>> flowSteps_;
     AdaptiveReport rep_;
 };
 
@@ -358,6 +402,62 @@ double Adaptive<Law>::locate(const DynState& s, double h, const DynState& y1) {
     return lo <= 1e-6 * h ? 0.0 : lo;
 }
 
+// The closed-form stuck step: as long as the Hermite interpolant allows, unless the contact may
+// start to slip inside it. |F| ≤ Y (the strength, constant while stuck) is certain on an
+// interval when it holds at both ends with the chord bound h²/8 max|F''| added; where it is not,
+// the step is checked on kStuckChecks sub-intervals, and the first sample beyond Y brackets the
+// onset (Illinois on |F(τ)| − Y of the closed form, so the onset is that of the exact motion).
+template <class Law>
+typename Adaptive<Law>::StuckStep Adaptive<Law>::stuckStep(const DynState& s, double tEnd) {
+    const detail::StuckFlow& f = *flow_;
+    const detail::StuckFlow::Split q = f.split(s);
+    const double R = f.ringAmplitude(q);
+    const double hH = f.hermiteStep(R, kHermiteShare * o_.tolerance * std::max(scale_, maxAbsX_));
+    StuckStep out;
+    out.level = hH >= hMax_ ? 0 : std::clamp(static_cast<int>(std::ceil(4.0 * std::log2(hMax_ / hH))), 0, kMax_);
+    double h = hOf(out.level);
+    out.atEnd = s.t + h >= tEnd - 1e-9 * h;
+    if (out.atEnd) h = tEnd - s.t;
+    out.next = out.atEnd ? f.advance(s, q, h) : f.advance(s, q, flowStep(out.level));
+    LawState free = s.law;
+    free.force_N = 0.0;
+    const double Y = -law_.slipFunction(free, m_.rig.normalForce_N);
+    const double curv = f.forceCurvatureBound(R);
+    auto certain = [&](double Fa, double Fb, double len) {
+        const double B = 0.125 * len * len * curv;
+        return std::max(Fa, Fb) + B <= Y && std::min(Fa, Fb) - B >= -Y;
+    };
+    if (certain(s.law.force_N, out.next.law.force_N, h)) return out;
+    double ta = 0.0, Fa = s.law.force_N;
+    for (int j = 1; j <= kStuckChecks; ++j) {
+        const double tb = h * j / kStuckChecks;
+        const DynState yb = j == kStuckChecks ? out.next : f.advance(s, q, tb);
+        if (std::abs(yb.law.force_N) > Y) {
+            double lo = ta, hi = tb, glo = std::abs(Fa) - Y, ghi = std::abs(yb.law.force_N) - Y;
+            int side = 0;
+            for (int it = 0; it < 100 && hi - lo > 1e-12 * h; ++it) {
+                double tau = (lo * ghi - hi * glo) / (ghi - glo);
+                if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
+                const double g = std::abs(f.advance(s, q, tau).law.force_N) - Y;
+                if (g <= 0.0) { lo = tau; glo = g; if (side == -1) ghi *= 0.5; side = -1; }
+                else { hi = tau; ghi = g; if (side == 1) glo *= 0.5; side = 1; }
+            }
+            out.next = f.advance(s, q, lo);
+            out.onset = true;
+            out.atEnd = false;
+            return out;
+        }
+        if (!certain(Fa, yb.law.force_N, tb - ta)) {
+            out.fallback = true;
+            out.level = std::min(kMax_, out.level + 12);  // h/8
+            return out;
+        }
+        ta = tb;
+        Fa = yb.law.force_N;
+    }
+    return out;
+}
+
 template <class Law>
 AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserver& obs, const RunControl& ctl) {
     const int kStart = std::min(kMax_, 24);  // h_max/64: the first steps resolve the start from rest
@@ -378,6 +478,31 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
             return rep_;
         }
         if (rep_.accepted + rep_.rejected >= o_.maxSteps) return fail("step budget (max_steps) exceeded");
+        if (flow_ && s.stuck && relabels < 2) {
+            const StuckStep st = stuckStep(s, tEnd);
+            if (!st.fallback) {
+                if (st.next.t > s.t) {
+                    relabels = 0;
+                    ++rep_.accepted;
+                    ++rep_.stuckSteps;
+                    ++rep_.closedFormSteps;
+                    if (obs) obs(s, st.next);
+                    s = st.next;
+                    if (st.atEnd) s.t = tEnd;
+                    maxAbsX_ = std::max(maxAbsX_, std::abs(s.x));
+                } else {
+                    ++relabels;
+                }
+                if (st.onset) {  // continue in slip, the steps growing from h_max/64 (below)
+                    s.stuck = false;
+                    s.slipRate = 0.0;
+                    ++rep_.switches;
+                    k = kStart;
+                }
+                continue;
+            }
+            k = std::max(k, st.level);
+        }
         double h = hOf(k);
         const bool last = s.t + h >= tEnd - 1e-9 * h;
         if (last) h = tEnd - s.t;

@@ -47,6 +47,10 @@ struct AdaptiveOptions {
     // order in stick and slip; false: the paper's Newmark + backward-Euler step, extrapolated
     // (order 1.31 in rate-state slip; kept for comparison).
     bool trBdf2 = true;
+    // While the contact sticks, step the rig in closed form (stuck_flow.hpp: exact for laws
+    // elastic in stick under a harmonic stage; the scheme's steps otherwise). False: the
+    // scheme's steps throughout (kept for comparison).
+    bool closedFormStick = true;
     ParamIssues validate() const;
 };
 
@@ -60,6 +64,7 @@ struct AdaptiveReport {
     long baseSteps = 0;      // Newmark + return-map steps taken (all attempts and root finding)
     long lawIterations = 0;
     long stuckSteps = 0;     // accepted steps that stuck
+    long closedFormSteps = 0;  // of those, taken in closed form (no base step)
 };
 
 // Called after every accepted step with the states at both of its ends.

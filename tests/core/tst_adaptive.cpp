@@ -11,6 +11,7 @@
 
 #include "core/analysis/stick_threshold.hpp"
 #include "core/integrate/adaptive.hpp"
+#include "core/integrate/stuck_flow.hpp"
 #include "physics_helpers.hpp"
 
 using namespace stickslip;
@@ -114,6 +115,8 @@ private slots:
         QFETCH(bool, coulomb);
         QFETCH(bool, trBdf2);
         QFETCH(double, minOrder);
+        // The scheme's own order: its stuck steps too (the closed-form ones are exact, and would
+        // leave only the slip phases to refine, whose error then meets the reference's floor).
         const SimParams p = lawParams(coulomb, 5);
         const std::vector<double> ref = coulomb ? referenceTrace(p) : extrapolatedReference(p);
         std::vector<double> ns = {1000, 2000, 4000, 8000}, err;
@@ -122,6 +125,7 @@ private slots:
             AdaptiveOptions o;
             o.tolerance = 0.5;  // the largest allowed: never rejects here
             o.trBdf2 = trBdf2;
+            o.closedFormStick = false;
             o.maxStep_s = p.drive.period() / n;
             const RunResult r = simulateAdaptive(p, o);
             QVERIFY2(r.ok(), r.message.c_str());
@@ -323,8 +327,9 @@ private slots:
         }
     }
 
-    // Energy over cycles 5–15 (the sets of tst_energy), with the trapezoidal rule on the accepted
-    // steps (switches are step ends, so F is smooth inside every step):
+    // Energy over cycles 5–15 (the sets of tst_energy), with Simpson's rule on the dense output of
+    // every accepted step (switches are step ends, so F is smooth inside every step; the closed-
+    // form stuck steps span ringing that the trapezoidal rule on their ends does not resolve):
     //   mechanical: ∫F ẋ dt = Δ(½ m ẋ² + ½ k x²) + ∫c ẋ² dt   (Eq. 8 times ẋ), to 1e-4 of the stage
     //               work ∫F u̇ dt (the quadrature and the run's errors are O(h²); seen ≤ 3.4e-5);
     //   contact:    ∫F ġ dt − Δ(F²/2ε_T) is the slip dissipation (Eq. 4 times F): > 0 overall;
@@ -363,14 +368,25 @@ private slots:
         const double mech0 = mech(s), F0 = s.law.force_N;
         double work = 0, powerX = 0, damping = 0, contact = 0, stuckDissipation = 0, slipDissipation = 0;
         double stuckPlastic = 0;
+        constexpr int kSub = 16;
         auto plastic = [&](const DynState& st) { return st.u - st.x - st.law.force_N / epsT; };
         const AdaptiveReport rep = advanceAdaptive(m, s, 15 * T, o, [&](const DynState& a, const DynState& b) {
-            const double h = b.t - a.t, ua = m.stage.velocity(a.t), ub = m.stage.velocity(b.t);
-            work += 0.5 * h * (a.law.force_N * ua + b.law.force_N * ub);
-            powerX += 0.5 * h * (a.law.force_N * a.v + b.law.force_N * b.v);
-            damping += 0.5 * h * c * (a.v * a.v + b.v * b.v);
-            const double d = 0.5 * h * (a.law.force_N * (ua - a.v) + b.law.force_N * (ub - b.v)) -
-                             (b.law.force_N * b.law.force_N - a.law.force_N * a.law.force_N) / (2 * epsT);
+            // Composite Simpson on the dense output, kSub panels per step.
+            const double h = b.t - a.t;
+            double w = 0, px = 0, dmp = 0, fg = 0;
+            for (int j = 0; j <= kSub; ++j) {
+                const DynState q = denseState(m, a, b, a.t + h * j / kSub);
+                const double wt = (j == 0 || j == kSub ? 1.0 : (j % 2 ? 4.0 : 2.0)) * h / (3.0 * kSub);
+                const double uv = m.stage.velocity(q.t);
+                w += wt * q.law.force_N * uv;
+                px += wt * q.law.force_N * q.v;
+                dmp += wt * c * q.v * q.v;
+                fg += wt * q.law.force_N * (uv - q.v);
+            }
+            work += w;
+            powerX += px;
+            damping += dmp;
+            const double d = fg - (b.law.force_N * b.law.force_N - a.law.force_N * a.law.force_N) / (2 * epsT);
             contact += d;
             (b.stuck && a.stuck ? stuckDissipation : slipDissipation) += d;
             if (b.stuck && a.stuck) stuckPlastic += 0.5 * (a.law.force_N + b.law.force_N) * (plastic(b) - plastic(a));
@@ -453,6 +469,59 @@ private slots:
         }
         qInfo("60 sets (%d with C1 > mu, run only): worst TOL 1e-4 %.2e, 1e-3 %.2e, Newmark %.2e, fixed T/200000 %.2e",
               degenerate, worst4, worst3, worstN, worstF);
+    }
+
+    // Closed-form stick (stuck_flow.hpp): the motion it gives is Eq. 8 with the elastic law
+    // (F − ε_T (u − x) constant, ẍ the equilibrium and the derivative of ẋ), steps compose
+    // (τ1 then τ2 = τ1 + τ2), and a run that sticks throughout (the Fig. 20 set at A = 0.05 mm, far
+    // below its stick threshold, from rest: the stuck mode rings) agrees with the scheme's own stuck steps at
+    // TOL 1e-5 in x and F, in a fraction of the steps.
+    void closedFormStick() {
+        SimParams p = lawParams(false, 3);
+        p.drive.amplitude_m = 0.05e-3;
+        const DynamicsModel m = DynamicsModel::fromParams(p);
+        const double eps = p.lawParams<RateStateParams>().epsT_N_per_m;
+        const detail::StuckFlow f(p.rig, eps, m.stage);
+        QVERIFY(f.valid());
+        DynState s = m.initialState(0.013);
+        s.x = 1e-5;
+        s.v = 2e-3;
+        s.law.force_N = 0.3;
+        s.a = (s.law.force_N - p.rig.damping_Ns_per_m * s.v - p.rig.stiffness_N_per_m * s.x) / p.rig.mass_kg;
+        const double tau = 1.7e-3, d = 1e-7;
+        const DynState y = f.advance(s, f.split(s), tau);
+        const DynState y1 = f.advance(s, f.split(s), 0.6e-3);
+        const DynState y2 = f.advance(y1, f.split(y1), tau - 0.6e-3);
+        QVERIFY(std::abs(y.t - (s.t + tau)) <= 1e-15);
+        QVERIFY2(std::abs(y2.x - y.x) <= 1e-12 * std::abs(y.x) + 1e-18, qPrintable(QString("%1 vs %2").arg(y2.x).arg(y.x)));
+        QVERIFY(std::abs(y2.v - y.v) <= 1e-10 * std::abs(y.v) + 1e-15);
+        QVERIFY(std::abs(y.u - m.stage.displacement(y.t)) <= 1e-15);
+        QVERIFY(std::abs((y.law.force_N - eps * (y.u - y.x)) - (s.law.force_N - eps * (s.u - s.x))) <= 1e-9);
+        const DynState ya = f.advance(s, f.split(s), tau - d), yb = f.advance(s, f.split(s), tau + d);
+        QVERIFY2(std::abs((yb.v - ya.v) / (2 * d) - y.a) <= 1e-5 * std::abs(y.a),
+                 qPrintable(QString("dv/dt %1 vs a %2").arg((yb.v - ya.v) / (2 * d)).arg(y.a)));
+        QVERIFY(std::abs((yb.x - ya.x) / (2 * d) - y.v) <= 1e-5 * std::abs(y.v));
+
+        AdaptiveOptions o;
+        o.tolerance = 1e-5;
+        const RunResult a = simulateAdaptive(p, o);
+        o.closedFormStick = false;
+        const RunResult b = simulateAdaptive(p, o);
+        QVERIFY2(a.ok() && b.ok(), (a.message + b.message).c_str());
+        QCOMPARE(a.stats.stuckSteps, a.stats.steps);
+        QCOMPARE(a.samples.size(), b.samples.size());
+        double dx = 0, dF = 0, xMax = 0, FMax = 0;
+        for (size_t i = 0; i < a.samples.size(); ++i) {
+            dx = std::max(dx, std::abs(a.samples[i].slider_m - b.samples[i].slider_m));
+            dF = std::max(dF, std::abs(a.samples[i].force_N - b.samples[i].force_N));
+            xMax = std::max(xMax, std::abs(b.samples[i].slider_m));
+            FMax = std::max(FMax, std::abs(b.samples[i].force_N));
+        }
+        qInfo("stuck run, TOL 1e-5: closed form %ld steps, scheme %ld steps (%ld base steps); |dx| %.3g of max|x|, |dF| %.3g of max|F|",
+              a.stats.steps, b.stats.steps, b.stats.newtonIterations, dx / xMax, dF / FMax);
+        QVERIFY(dx <= 2e-5 * xMax);
+        QVERIFY(dF <= 5e-4 * FMax);  // ε_T = 1e6 turns the scheme's x error into F (seen 1.2e-4)
+        QVERIFY(a.stats.steps * 3 < b.stats.steps);
     }
 
     void optionsValidate() {
