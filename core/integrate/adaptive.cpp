@@ -81,8 +81,11 @@ constexpr double kPerPeriod = 1.0;
 constexpr double kStuckAllowance = 10.0;
 // With TR-BDF2 the kept value is third order in slip as well, the estimate that of the
 // second-order y₂: slip steps may use kTrSlipAllowance× the allowance. Calibrated (tst_adaptive's
-// four sets, TOL 1e-2 … 1e-5; see docs/adaptive.md).
-constexpr double kTrSlipAllowance = 3.0;
+// four sets, TOL 1e-2 … 1e-5; see docs/adaptive.md): 3 until session 24; 4 once the steps after
+// a closed-form onset restart from h_max/1024 (kOnset), which took the onset's error floor away
+// (error/TOL 0.13–0.34 on the rate-state sets, the 60 random sets within 3.3e-5 at TOL 1e-4 and
+// 8.5e-4 at 1e-3; 5 put one random set at 1.3e-3 and 6 at 3.0e-3 at TOL 1e-3).
+constexpr double kTrSlipAllowance = 4.0;
 // Largest difference of α between the one-step and the two-half-step results of an accepted
 // step, in units of the law's α scale (r of K1(α) = C1 (exp(α/r) − 1)): 10 % in the strength's
 // exponent. A resolution guard (ratio() below), not part of the tolerance.
@@ -473,6 +476,14 @@ typename Adaptive<Law>::StuckStep Adaptive<Law>::stuckStep(const DynState& s, do
 template <class Law>
 AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserver& obs, const RunControl& ctl) {
     const int kStart = std::min(kMax_, 24);  // h_max/64: the first steps resolve the start from rest
+    // After a slip onset located on the closed form (stuckStep) the steps grow from h_max/1024
+    // (T/32 768). The onset starts the law's
+    // transients (the overstress relaxing in η t_N/ε_T, α over D_c/|V| from V = 0); a first step
+    // that spans them damps them in both the one step and the two half steps (L-stable), so the
+    // estimate does not see its error. From h_max/64 that error was a floor that did not scale
+    // with TOL: 5.6e-5 at TOL 1e-4 and 1.9e-5 at 1e-5 on the bench_core set, 2.4e-5 and 2.7e-6
+    // from h_max/1024, for 2 % more steps (docs/adaptive.md, session 24).
+    const int kOnset = std::min(kMax_, kStart + 16);
     int k = kStart;
     int relabels = 0;
     DynState y1, ym, y2;
@@ -505,11 +516,11 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
                 } else {
                     ++relabels;
                 }
-                if (st.onset) {  // continue in slip, the steps growing from h_max/64 (below)
+                if (st.onset) {  // continue in slip, the steps growing again (kOnset)
                     s.stuck = false;
                     s.slipRate = 0.0;
                     ++rep_.switches;
-                    k = kStart;
+                    k = kOnset;
                 }
                 continue;
             }
@@ -574,10 +585,10 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
         if (atEnd) s.t = tEnd;
         maxAbsX_ = std::max(maxAbsX_, std::abs(s.x));
         k = nextLevel(k, r, throughout);
-        // A slip onset starts the law's transients (the overstress in η t_N/ε_T, α over D_c/|V|):
-        // the steps after it grow again from h_max/64, as after the start from rest, instead of
-        // one step of the size reached in stick spanning them (seen with TR-BDF2: that first slip
-        // step set a floor on the error at h_max ≥ T/2000 on the Fig. 20 set).
+        // A slip onset located by the scheme (closedFormStick off, or handed back to it): the
+        // steps grow again from h_max/64 instead of one step of the size reached in stick
+        // spanning the law's transients. (From kOnset, the order test's run at h_max = T/2000,
+        // TOL 0.5, went from 4.7e-6 to 1.0e-4: kept as it was for the scheme's own path.)
         if (toOnset && tr_) k = std::max(k, kStart);
     }
     return rep_;
