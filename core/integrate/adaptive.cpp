@@ -429,11 +429,16 @@ typename Adaptive<Law>::StuckStep Adaptive<Law>::stuckStep(const DynState& s, do
     const double R = f.ringAmplitude(q);
     const double hH = f.hermiteStep(R, kHermiteShare * o_.tolerance * std::max(scale_, maxAbsX_));
     StuckStep out;
-    out.level = hH >= hMax_ ? 0 : std::clamp(static_cast<int>(std::ceil(4.0 * std::log2(hMax_ / hH))), 0, kMax_);
+    const double lv = 4.0 * std::log2(hMax_ / hH);  // NaN or +inf when hH is not a positive number
+    out.level = hH >= hMax_ ? 0 : (lv < kMax_ ? std::max(0, static_cast<int>(std::ceil(lv))) : kMax_);
     double h = hOf(out.level);
     out.atEnd = s.t + h >= tEnd - 1e-9 * h;
     if (out.atEnd) h = tEnd - s.t;
     out.next = out.atEnd ? f.advance(s, q, h) : f.advance(s, q, flowStep(out.level));
+    if (!std::isfinite(out.next.x) || !std::isfinite(out.next.v) || !std::isfinite(out.next.law.force_N)) {
+        out.fallback = true;  // the scheme's step reports the failure with its own message
+        return out;
+    }
     LawState free = s.law;
     free.force_N = 0.0;
     const double Y = -law_.slipFunction(free, m_.rig.normalForce_N);
