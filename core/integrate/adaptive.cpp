@@ -8,60 +8,12 @@
 #include <numbers>
 #include <optional>
 #include <utility>
-#include <variant>
 #include <vector>
 
 #include "stuck_flow.hpp"
 #include "trbdf2.hpp"
 
 namespace stickslip {
-
-ParamIssues AdaptiveOptions::validate() const {
-    ParamIssues out;
-    // Below 1e-5 the steps at grazing stops (F at the slip bound with V ≈ 0) reach the round-off
-    // floor of the Newmark update and the run chatters or goes wrong (measured at 1e-6 and 1e-7
-    // on the Fig. 20 set): refused until that is fixed (docs/adaptive.md, open points).
-    if (!(std::isfinite(tolerance) && tolerance >= 1e-5 && tolerance <= 0.5))
-        out.push_back({"tolerance", tolerance, ">= 1e-5 and <= 0.5"});
-    if (!(std::isfinite(maxStep_s) && maxStep_s >= 0.0)) out.push_back({"max_step", maxStep_s, ">= 0 (0 = T/32)"});
-    if (!(std::isfinite(minStep_s) && minStep_s >= 0.0)) out.push_back({"min_step", minStep_s, ">= 0 (0 = automatic)"});
-    if (minStep_s > 0.0 && maxStep_s > 0.0 && minStep_s > maxStep_s)
-        out.push_back({"min_step", minStep_s, "<= max_step"});
-    if (!(std::isfinite(displacementScale_m) && displacementScale_m >= 0.0))
-        out.push_back({"displacement_scale", displacementScale_m, ">= 0 (0 = automatic)"});
-    if (maxSteps < 1) out.push_back({"max_steps", static_cast<double>(maxSteps), ">= 1"});
-    return out;
-}
-
-DynState denseState(const DynamicsModel& m, const DynState& a, const DynState& b, double t) {
-    const double h = b.t - a.t;
-    if (!(h > 0.0) || t >= b.t) return b;
-    if (t <= a.t) return a;
-    const double th = (t - a.t) / h, th2 = th * th, th3 = th2 * th;
-    const double h00 = 2 * th3 - 3 * th2 + 1, h10 = th3 - 2 * th2 + th, h01 = -2 * th3 + 3 * th2, h11 = th3 - th2;
-    DynState s = b;
-    s.t = t;
-    s.x = h00 * a.x + h10 * h * a.v + h01 * b.x + h11 * h * b.v;
-    s.v = h00 * a.v + h10 * h * a.a + h01 * b.v + h11 * h * b.a;
-    s.u = m.stage.displacement(t);
-    s.law.alpha = a.law.alpha + th * (b.law.alpha - a.law.alpha);
-    // Stuck throughout a step of a law elastic in stick, F = F_a + ε_T (Δu − Δx) exactly (Eq. 4
-    // with λ̇ = 0) and ẍ is Eq. 8's: both follow the x interpolant, as they must over the long
-    // closed-form stuck steps (stuck_flow.hpp), which span ringing a line would cut across.
-    const double eps = std::visit([](const auto& law) {
-        if constexpr (requires { std::decay_t<decltype(law)>::kElasticStick; }) return law.epsT();
-        else return 0.0;
-    }, m.law);
-    if (a.stuck && b.stuck && eps > 0.0) {
-        s.law.force_N = a.law.force_N + eps * ((s.u - a.u) - (s.x - a.x));
-        s.a = (s.law.force_N - m.rig.damping_Ns_per_m * s.v - m.rig.stiffness_N_per_m * s.x) / m.rig.mass_kg;
-        return s;
-    }
-    // a from the derivative of the x interpolant would lose an order; interpolate linearly.
-    s.a = a.a + th * (b.a - a.a);
-    s.law.force_N = a.law.force_N + th * (b.law.force_N - a.law.force_N);
-    return s;
-}
 
 namespace {
 
@@ -154,6 +106,8 @@ public:
         if constexpr (HasAlphaRate<Law>) tr_ = o.trBdf2;
         if constexpr (requires { law.params.r; }) alphaScale_ = law.params.r;
         omega_ = harmonic_ ? m.stage.omega() : 0.0;
+        kStart_ = std::min(kMax_, 24);
+        kOnset_ = std::min(kMax_, kStart_ + 16);
         if constexpr (requires { Law::kElasticStick; }) {
             if (Law::kElasticStick && o.closedFormStick) {
                 flow_.emplace(m.rig, law.epsT(), m.stage);
@@ -174,6 +128,16 @@ private:
         int level = 0;
     };
     StuckStep stuckStep(const DynState& s, double tEnd);
+    bool closedFormStep(DynState& s, double tEnd, int& k, int& relabels, const AdaptiveObserver& obs);
+    // Bookkeeping of an accepted step from s to next (which ends exactly at tEnd when atEnd).
+    void accept(DynState& s, const DynState& next, bool atEnd, double tEnd, const AdaptiveObserver& obs) {
+        ++rep_.accepted;
+        rep_.stuckSteps += next.stuck ? 1 : 0;
+        if (obs) obs(s, next);
+        s = next;
+        if (atEnd) s.t = tEnd;
+        maxAbsX_ = std::max(maxAbsX_, std::abs(s.x));
+    }
     const detail::StuckFlow::Step& flowStep(int k) {
         auto& c = flowSteps_[static_cast<size_t>(k)];
         if (!c) c = flow_->step(hOf(k));
@@ -319,6 +283,15 @@ private:
     const Law& law_;
     const AdaptiveOptions& o_;
     double period_ = 1, hMax_ = 0, hMin_ = 0, scale_ = 0, maxAbsX_ = 0, omega_ = 0, alphaScale_ = 1;
+    // Levels the steps restart from: kStart_ = h_max/64, where the first steps resolve the start
+    // from rest (and, in the scheme's own path, a slip onset); kOnset_ = h_max/1024 (T/32 768)
+    // after an onset located on the closed form. The onset starts the law's transients (the
+    // overstress relaxing in η t_N/ε_T, α over D_c/|V| from V = 0); a first step that spans them
+    // damps them alike in the one step and the two half steps (L-stable), so the estimate does
+    // not see its error. From h_max/64 that error was a floor that did not fall with TOL (5.6e-5
+    // at TOL 1e-4, 1.9e-5 at 1e-5 on the bench_core set; from h_max/1024 2.4e-5 and 2.7e-6, for
+    // 2 % more steps; docs/adaptive.md, session 24).
+    int kStart_ = 0, kOnset_ = 0;
     bool harmonic_ = false, viscous_ = false, tr_ = false;
     std::array<double, kLevels> hTable_{};
     int kMax_ = 0;
@@ -349,7 +322,8 @@ double Adaptive<Law>::trialSlip(const DynState& s, double tau) const {
 }
 
 // Length τ ∈ (0, h) of the step from s that ends at the switch (on the side of s's regime);
-// 0 when the switch is at s itself; −1 when no switch is bracketed by [0, h] (or [0, h/2]).
+// 0 when the switch is at s itself; −1 when no switch is bracketed by [0, h] (or [0, h/2]);
+// kSwitchInside when the step may keep it (judged by the error control alone).
 template <class Law>
 double Adaptive<Law>::locate(const DynState& s, double h, const DynState& y1) {
     double lo = 0.0, hi = h;
@@ -377,7 +351,7 @@ double Adaptive<Law>::locate(const DynState& s, double h, const DynState& y1) {
         // τ* that still slips, so: guess the root from the attempted step's own dense output, take
         // the step to just past the guess and read the root off it (one base step, as a rule).
         // From a state past the reversal what is left is the overstress relaxing: it has ended
-        // when Φ ≤ 0 (the switch is at s), else τ* is found by Illinois on Φ at the step's end.
+        // when Φ ≤ 0 (the switch is at s), else the step is left to the error control (below).
         const double tN = m_.rig.normalForce_N;
         const double sgn = s.law.force_N >= 0.0 ? 1.0 : -1.0;
         const bool reversed = !(sgn * (m_.stage.velocity(s.t) - s.v) > 0.0);
@@ -417,11 +391,8 @@ double Adaptive<Law>::locate(const DynState& s, double h, const DynState& y1) {
     return lo <= 1e-6 * h ? 0.0 : lo;
 }
 
-// The closed-form stuck step: as long as the Hermite interpolant allows, unless the contact may
-// start to slip inside it. |F| ≤ Y (the strength, constant while stuck) is certain on an
-// interval when it holds at both ends with the chord bound h²/8 max|F''| added; where it is not,
-// the step is checked on kStuckChecks sub-intervals, and the first sample beyond Y brackets the
-// onset (Illinois on |F(τ)| − Y of the closed form, so the onset is that of the exact motion).
+// The closed-form stuck step (stuck_flow.hpp): as long as the Hermite interpolant allows, unless
+// the contact may start to slip inside it (StuckFlow::checkedStep).
 template <class Law>
 typename Adaptive<Law>::StuckStep Adaptive<Law>::stuckStep(const DynState& s, double tEnd) {
     const detail::StuckFlow& f = *flow_;
@@ -434,62 +405,48 @@ typename Adaptive<Law>::StuckStep Adaptive<Law>::stuckStep(const DynState& s, do
     double h = hOf(out.level);
     out.atEnd = s.t + h >= tEnd - 1e-9 * h;
     if (out.atEnd) h = tEnd - s.t;
-    out.next = out.atEnd ? f.advance(s, q, h) : f.advance(s, q, flowStep(out.level));
-    if (!std::isfinite(out.next.x) || !std::isfinite(out.next.v) || !std::isfinite(out.next.law.force_N)) {
-        out.fallback = true;  // the scheme's step reports the failure with its own message
-        return out;
-    }
     LawState free = s.law;
     free.force_N = 0.0;
-    const double Y = -law_.slipFunction(free, m_.rig.normalForce_N);
-    const double curv = f.forceCurvatureBound(R);
-    auto certain = [&](double Fa, double Fb, double len) {
-        const double B = 0.125 * len * len * curv;
-        return std::max(Fa, Fb) + B <= Y && std::min(Fa, Fb) - B >= -Y;
-    };
-    if (certain(s.law.force_N, out.next.law.force_N, h)) return out;
-    double ta = 0.0, Fa = s.law.force_N;
-    for (int j = 1; j <= kStuckChecks; ++j) {
-        const double tb = h * j / kStuckChecks;
-        const DynState yb = j == kStuckChecks ? out.next : f.advance(s, q, tb);
-        if (std::abs(yb.law.force_N) > Y) {
-            double lo = ta, hi = tb, glo = std::abs(Fa) - Y, ghi = std::abs(yb.law.force_N) - Y;
-            int side = 0;
-            for (int it = 0; it < 100 && hi - lo > 1e-12 * h; ++it) {
-                double tau = (lo * ghi - hi * glo) / (ghi - glo);
-                if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
-                const double g = std::abs(f.advance(s, q, tau).law.force_N) - Y;
-                if (g <= 0.0) { lo = tau; glo = g; if (side == -1) ghi *= 0.5; side = -1; }
-                else { hi = tau; ghi = g; if (side == 1) glo *= 0.5; side = 1; }
-            }
-            out.next = f.advance(s, q, lo);
-            out.onset = true;
-            out.atEnd = false;
-            return out;
-        }
-        if (!certain(Fa, yb.law.force_N, tb - ta)) {
-            out.fallback = true;
-            out.level = std::min(kMax_, out.level + 12);  // h/8
-            return out;
-        }
-        ta = tb;
-        Fa = yb.law.force_N;
+    const double Y = -law_.slipFunction(free, m_.rig.normalForce_N);  // the strength while stuck
+    const auto c = f.checkedStep(s, q, R, h, out.atEnd ? nullptr : &flowStep(out.level), Y, kStuckChecks);
+    out.next = c.next;
+    switch (c.kind) {
+        case detail::StuckFlow::Checked::Stuck: break;
+        case detail::StuckFlow::Checked::Onset: out.onset = true; out.atEnd = false; break;
+        case detail::StuckFlow::Checked::Unsure: out.fallback = true; out.level = std::min(kMax_, out.level + 12); break;  // h/8
+        case detail::StuckFlow::Checked::NonFinite: out.fallback = true; break;  // the scheme reports the failure
     }
     return out;
 }
 
+// One closed-form stuck step from a stuck s, accepted (true), or false when it hands the step
+// to the scheme (level k raised to the size it asks for).
+template <class Law>
+bool Adaptive<Law>::closedFormStep(DynState& s, double tEnd, int& k, int& relabels, const AdaptiveObserver& obs) {
+    const StuckStep st = stuckStep(s, tEnd);
+    if (st.fallback) {
+        k = std::max(k, st.level);
+        return false;
+    }
+    if (st.next.t > s.t) {
+        accept(s, st.next, st.atEnd, tEnd, obs);
+        ++rep_.closedFormSteps;
+        relabels = 0;
+    } else {
+        ++relabels;  // the onset is at s
+    }
+    if (st.onset) {  // continue in slip, the steps growing again from h_max/1024
+        s.stuck = false;
+        s.slipRate = 0.0;
+        ++rep_.switches;
+        k = kOnset_;
+    }
+    return true;
+}
+
 template <class Law>
 AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserver& obs, const RunControl& ctl) {
-    const int kStart = std::min(kMax_, 24);  // h_max/64: the first steps resolve the start from rest
-    // After a slip onset located on the closed form (stuckStep) the steps grow from h_max/1024
-    // (T/32 768). The onset starts the law's
-    // transients (the overstress relaxing in η t_N/ε_T, α over D_c/|V| from V = 0); a first step
-    // that spans them damps them in both the one step and the two half steps (L-stable), so the
-    // estimate does not see its error. From h_max/64 that error was a floor that did not scale
-    // with TOL: 5.6e-5 at TOL 1e-4 and 1.9e-5 at 1e-5 on the bench_core set, 2.4e-5 and 2.7e-6
-    // from h_max/1024, for 2 % more steps (docs/adaptive.md, session 24).
-    const int kOnset = std::min(kMax_, kStart + 16);
-    int k = kStart;
+    int k = kStart_;
     int relabels = 0;
     DynState y1, ym, y2;
     auto fail = [&](const char* what) {
@@ -506,31 +463,7 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
             return rep_;
         }
         if (rep_.accepted + rep_.rejected >= o_.maxSteps) return fail("step budget (max_steps) exceeded");
-        if (flow_ && s.stuck && relabels < 2) {
-            const StuckStep st = stuckStep(s, tEnd);
-            if (!st.fallback) {
-                if (st.next.t > s.t) {
-                    relabels = 0;
-                    ++rep_.accepted;
-                    ++rep_.stuckSteps;
-                    ++rep_.closedFormSteps;
-                    if (obs) obs(s, st.next);
-                    s = st.next;
-                    if (st.atEnd) s.t = tEnd;
-                    maxAbsX_ = std::max(maxAbsX_, std::abs(s.x));
-                } else {
-                    ++relabels;
-                }
-                if (st.onset) {  // continue in slip, the steps growing again (kOnset)
-                    s.stuck = false;
-                    s.slipRate = 0.0;
-                    ++rep_.switches;
-                    k = kOnset;
-                }
-                continue;
-            }
-            k = std::max(k, st.level);
-        }
+        if (flow_ && s.stuck && relabels < 2 && closedFormStep(s, tEnd, k, relabels, obs)) continue;
         double h = hOf(k);
         const bool last = s.t + h >= tEnd - 1e-9 * h;
         if (last) h = tEnd - s.t;
@@ -548,7 +481,7 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
         if (!same && o_.locateSwitches && relabels < 2) {
             const double tau = locate(s, h, y1);
             if (tau == 0.0) {  // the switch is at s: continue in the other regime
-                if (s.stuck && tr_) k = std::max(k, kStart);
+                if (s.stuck && tr_) k = std::max(k, kStart_);
                 s.stuck = !s.stuck;
                 if (!s.stuck) s.slipRate = 0.0;
                 ++rep_.switches;
@@ -583,18 +516,13 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
             !std::isfinite(next.law.alpha))
             return fail("non-finite state");
         relabels = 0;
-        ++rep_.accepted;
-        rep_.stuckSteps += next.stuck ? 1 : 0;
-        if (obs) obs(s, next);
-        s = next;
-        if (atEnd) s.t = tEnd;
-        maxAbsX_ = std::max(maxAbsX_, std::abs(s.x));
+        accept(s, next, atEnd, tEnd, obs);
         k = nextLevel(k, r, throughout);
         // A slip onset located by the scheme (closedFormStick off, or handed back to it): the
         // steps grow again from h_max/64 instead of one step of the size reached in stick
         // spanning the law's transients. (From kOnset, the order test's run at h_max = T/2000,
         // TOL 0.5, went from 4.7e-6 to 1.0e-4: kept as it was for the scheme's own path.)
-        if (toOnset && tr_) k = std::max(k, kStart);
+        if (toOnset && tr_) k = std::max(k, kStart_);
     }
     return rep_;
 }
@@ -616,59 +544,6 @@ AdaptiveReport advanceAdaptive(const DynamicsModel& m, DynState& s, double tEnd,
         Adaptive<std::decay_t<decltype(law)>> a(m, law, o);
         return a.run(s, tEnd, onStep, ctl);
     }, m.law);
-}
-
-RunResult simulateAdaptive(const SimParams& p, const AdaptiveOptions& o, const RunControl& ctl) {
-    RunResult res;
-    ParamIssues issues = p.validate();
-    const ParamIssues more = o.validate();
-    issues.insert(issues.end(), more.begin(), more.end());
-    if (!issues.empty()) {
-        res.status = RunStatus::Failed;
-        res.message = formatIssues(issues);
-        return res;
-    }
-    const DynamicsModel m = DynamicsModel::fromParams(p);
-    DynState s = m.initialState(0.0);
-    const double T = p.drive.period();
-    const double t0 = p.transientCycles * T, tEnd = t0 + p.cycles * T;
-    const double dtOut = p.integration.outputInterval_s;
-    const long nOut = std::lround(p.cycles * T / dtOut);
-    if (t0 > 0.0) {
-        RunControl quiet;
-        quiet.cancel = ctl.cancel;
-        const AdaptiveReport rep = advanceAdaptive(m, s, t0, o, {}, quiet);
-        if (rep.status != RunStatus::Ok) {
-            res.status = rep.status;
-            res.message = rep.message;
-            return res;
-        }
-    }
-    res.samples.reserve(static_cast<size_t>(std::min<long>(nOut + 2, 1L << 20)));
-    ctl.output(res.samples, toSample(m, s));
-    const long perPeriod = stepsPerPeriodDividing(p);
-    res.period.stepsPerPeriod = perPeriod > 0 ? perPeriod : 1;
-    long j = 1;                                                         // next output sample
-    long kPer = static_cast<long>(std::floor(t0 / T + 1e-9)) + 1;      // next whole period kT > t0
-    double maxV = 0.0;
-    const double tiny = 1e-9 * dtOut;
-    auto obs = [&](const DynState& a, const DynState& b) {
-        maxV = std::max(maxV, std::abs(m.stage.velocity(b.t) - b.v));
-        for (double t; j <= nOut && (t = t0 + static_cast<double>(j) * dtOut) <= b.t + tiny; ++j)
-            ctl.output(res.samples, toSample(m, denseState(m, a, b, std::min(t, b.t))));
-        for (double t; (t = static_cast<double>(kPer) * T) <= b.t + tiny && t <= tEnd + tiny; ++kPer)
-            res.period.samples.push_back(toSample(m, denseState(m, a, b, std::min(t, b.t))));
-        if (ctl.progress && (b.t - t0) > 0) ctl.progress(std::min(1.0, (b.t - t0) / (tEnd - t0)));
-    };
-    const AdaptiveReport rep = advanceAdaptive(m, s, tEnd, o, obs, ctl);
-    res.stats.steps = rep.accepted;
-    res.stats.newtonIterations = rep.baseSteps;
-    res.stats.lawIterations = rep.lawIterations;
-    res.stats.stuckSteps = rep.stuckSteps;
-    res.period.maxRelVel_mps = maxV;
-    res.status = rep.status;
-    res.message = rep.message;
-    return res;
 }
 
 }  // namespace stickslip

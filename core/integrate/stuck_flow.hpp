@@ -100,7 +100,66 @@ public:
         return m4 > 0.0 ? std::sqrt(std::sqrt(384.0 * errAbs / m4)) : INFINITY;
     }
 
+    // A stuck step of length h from s (split q, ringing amplitude R; `cached`: its rotation when
+    // h is a grid size) against the strength Y (|F| ≤ Y while stuck, Y constant). |F| ≤ Y is
+    // certain on an interval when it holds at both ends with the chord bound len²/8 max|F''|
+    // added; where it is not, the step is checked on `checks` sub-intervals and the first sample
+    // beyond Y brackets the onset, located by Illinois on |F(τ)| − Y of the closed form (the
+    // onset of the exact motion). Unsure: a sub-interval that the bound cannot clear (the caller
+    // takes a shorter step of its own scheme); NonFinite: the state is not a number.
+    struct Checked {
+        enum Kind { Stuck, Onset, Unsure, NonFinite } kind = Stuck;
+        DynState next;  // Stuck: the step's end; Onset: the onset (on the stuck side of it)
+    };
+    Checked checkedStep(const DynState& s, const Split& q, double R, double h, const Step* cached, double Y,
+                        int checks) const {
+        Checked out;
+        out.next = cached ? advance(s, q, *cached) : advance(s, q, h);
+        if (!std::isfinite(out.next.x) || !std::isfinite(out.next.v) || !std::isfinite(out.next.law.force_N)) {
+            out.kind = Checked::NonFinite;
+            return out;
+        }
+        const double curv = forceCurvatureBound(R);
+        auto certain = [&](double Fa, double Fb, double len) {
+            const double B = 0.125 * len * len * curv;
+            return std::max(Fa, Fb) + B <= Y && std::min(Fa, Fb) - B >= -Y;
+        };
+        if (certain(s.law.force_N, out.next.law.force_N, h)) return out;
+        double ta = 0.0, Fa = s.law.force_N;
+        for (int j = 1; j <= checks; ++j) {
+            const double tb = h * j / checks;
+            const double Fb = j == checks ? out.next.law.force_N : advance(s, q, tb).law.force_N;
+            if (std::abs(Fb) > Y) {
+                out.next = advance(s, q, onsetIn(s, q, Y, ta, std::abs(Fa) - Y, tb, std::abs(Fb) - Y, h));
+                out.kind = Checked::Onset;
+                return out;
+            }
+            if (!certain(Fa, Fb, tb - ta)) {
+                out.kind = Checked::Unsure;
+                return out;
+            }
+            ta = tb;
+            Fa = Fb;
+        }
+        return out;
+    }
+
 private:
+    // Root of |F(τ)| − Y in [lo, hi] (g(lo) ≤ 0 < g(hi)) by Illinois, to 1e-12 h; the point
+    // returned is on the stuck side.
+    double onsetIn(const DynState& s, const Split& q, double Y, double lo, double glo, double hi, double ghi,
+                   double h) const {
+        int side = 0;
+        for (int it = 0; it < 100 && hi - lo > 1e-12 * h; ++it) {
+            double tau = (lo * ghi - hi * glo) / (ghi - glo);
+            if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
+            const double g = std::abs(advance(s, q, tau).law.force_N) - Y;
+            if (g <= 0.0) { lo = tau; glo = g; if (side == -1) ghi *= 0.5; side = -1; }
+            else { hi = tau; ghi = g; if (side == 1) glo *= 0.5; side = 1; }
+        }
+        return lo;
+    }
+
     double m_, c_, k_, eps_;
     double A_ = 0, w_ = 0, phase_ = 0, wn2_ = 0, sigma_ = 0, wd_ = 1, invK_ = 0;
     double Xs_ = 0, Xc_ = 0, relAmp_ = 0, forcedAmp_ = 0, ringCurv_ = 0;
