@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "illinois.hpp"
 #include "stuck_flow.hpp"
 #include "trbdf2.hpp"
 
@@ -257,17 +258,9 @@ private:
                              (th3 - th2) * tau * y.a;
             return sgn * (m_.stage.velocity(s.t + t) - v);
         };
-        double lo = 0.0, hi = tau, glo = g(lo), ghi = g(hi);
+        const double glo = g(0.0), ghi = g(tau);
         if (!(glo > 0.0) || !(ghi < 0.0)) return -1.0;
-        int side = 0;
-        for (int it = 0; it < 100 && hi - lo > 1e-12 * tau; ++it) {
-            double t = (lo * ghi - hi * glo) / (ghi - glo);
-            if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-            const double gt = g(t);
-            if (gt > 0.0) { lo = t; glo = gt; if (side == -1) ghi *= 0.5; side = -1; }
-            else { hi = t; ghi = gt; if (side == 1) glo *= 0.5; side = 1; }
-        }
-        return lo;
+        return detail::illinois(g, 0.0, glo, tau, ghi, 1e-12 * tau, true);
     }
     int nextLevel(int k, double r, bool stuck) const {
         // est/h ∝ h² in both regimes: the estimate is on x, whose local error is O(h³) also in slip
@@ -334,14 +327,7 @@ double Adaptive<Law>::locate(const DynState& s, double h, const DynState& y1) {
         double ghi = trialSlip(s, hi);
         if (ghi <= 0.0) { hi = 0.5 * h; ghi = trialSlip(s, hi); }
         if (ghi <= 0.0) return -1.0;
-        int side = 0;
-        for (int it = 0; it < 100 && hi - lo > 1e-10 * h; ++it) {
-            double tau = (lo * ghi - hi * glo) / (ghi - glo);
-            if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
-            const double g = trialSlip(s, tau);
-            if (g <= 0.0) { lo = tau; glo = g; if (side == -1) ghi *= 0.5; side = -1; }
-            else { hi = tau; ghi = g; if (side == 1) glo *= 0.5; side = 1; }
-        }
+        lo = detail::illinois([&](double tau) { return trialSlip(s, tau); }, lo, glo, hi, ghi, 1e-10 * h, false);
     } else {
         // Slip → stick. The step's trial is elastic over the whole step, so a step still slips a
         // little after the slip velocity has reversed; the slip ends where V = u̇ − ẋ changes sign

@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "dynamics.hpp"
+#include "illinois.hpp"
 
 namespace stickslip::detail {
 
@@ -145,19 +146,12 @@ public:
     }
 
 private:
-    // Root of |F(τ)| − Y in [lo, hi] (g(lo) ≤ 0 < g(hi)) by Illinois, to 1e-12 h; the point
-    // returned is on the stuck side.
+    // Root of |F(τ)| − Y in [lo, hi] (g(lo) ≤ 0 < g(hi)) to 1e-12 h; the point returned is on
+    // the stuck side.
     double onsetIn(const DynState& s, const Split& q, double Y, double lo, double glo, double hi, double ghi,
                    double h) const {
-        int side = 0;
-        for (int it = 0; it < 100 && hi - lo > 1e-12 * h; ++it) {
-            double tau = (lo * ghi - hi * glo) / (ghi - glo);
-            if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
-            const double g = std::abs(advance(s, q, tau).law.force_N) - Y;
-            if (g <= 0.0) { lo = tau; glo = g; if (side == -1) ghi *= 0.5; side = -1; }
-            else { hi = tau; ghi = g; if (side == 1) glo *= 0.5; side = 1; }
-        }
-        return lo;
+        return illinois([&](double tau) { return std::abs(advance(s, q, tau).law.force_N) - Y; }, lo, glo, hi, ghi,
+                        1e-12 * h, false);
     }
 
     double m_, c_, k_, eps_;

@@ -11,6 +11,7 @@
 
 #include "core/analysis/stick_threshold.hpp"
 #include "core/integrate/adaptive.hpp"
+#include "core/integrate/illinois.hpp"
 #include "core/integrate/stuck_flow.hpp"
 #include "physics_helpers.hpp"
 
@@ -522,6 +523,24 @@ private slots:
         QVERIFY(dx <= 2e-5 * xMax);
         QVERIFY(dF <= 5e-4 * FMax);  // ε_T = 1e6 turns the scheme's x error into F (seen 1.2e-4)
         QVERIFY(a.stats.steps * 3 < b.stats.steps);
+    }
+
+    // The shared Illinois root (illinois.hpp): converges to the root from either sign
+    // convention, keeps the point it returns on lo's side, and stops at the bracket width asked.
+    void illinoisRoot() {
+        const double root = std::acos(0.5);
+        int calls = 0;
+        auto down = [&](double t) { ++calls; return std::cos(t) - 0.5; };  // > 0 left of the root
+        const double a = detail::illinois(down, 0.0, down(0.0), 2.0, down(2.0), 1e-12, true);
+        QVERIFY(std::abs(a - root) <= 1e-11);
+        QVERIFY(down(a) > 0.0);
+        QVERIFY2(calls < 30, qPrintable(QString("%1 evaluations").arg(calls)));
+        auto up = [](double t) { return 0.5 - std::cos(t); };  // <= 0 left of the root
+        const double b = detail::illinois(up, 0.0, up(0.0), 2.0, up(2.0), 1e-12, false);
+        QVERIFY(std::abs(b - root) <= 1e-11);
+        QVERIFY(up(b) <= 0.0);
+        const double c = detail::illinois(up, 0.0, up(0.0), 2.0, up(2.0), 1e-3, false);
+        QVERIFY(c <= root && root - c <= 1e-3 + 1e-12);
     }
 
     void optionsValidate() {
