@@ -39,6 +39,9 @@ constexpr double kStuckAllowance = 10.0;
 // (error/TOL 0.13–0.34 on the rate-state sets, the 60 random sets within 3.3e-5 at TOL 1e-4 and
 // 8.5e-4 at 1e-3; 5 put one random set at 1.3e-3 and 6 at 3.0e-3 at TOL 1e-3).
 constexpr double kTrSlipAllowance = 4.0;
+// Slip steps judged by TR-BDF2's embedded estimate (AdaptiveOptions::embeddedSlip): the estimate
+// is that of the kept value, so the allowance is the plain one. Calibrated like the above.
+constexpr double kEmbeddedAllowance = 1.0;
 // Largest difference of α between the one-step and the two-half-step results of an accepted
 // step, in units of the law's α scale (r of K1(α) = C1 (exp(α/r) − 1)): 10 % in the strength's
 // exponent. A resolution guard (ratio() below), not part of the tolerance.
@@ -105,6 +108,7 @@ public:
         harmonic_ = m.stage.isHarmonic();
         if constexpr (requires { Law::kViscous; }) viscous_ = Law::kViscous;
         if constexpr (HasAlphaRate<Law>) tr_ = o.trBdf2;
+        embedded_ = tr_ && o.embeddedSlip;
         if constexpr (requires { law.params.r; }) alphaScale_ = law.params.r;
         omega_ = harmonic_ ? m.stage.omega() : 0.0;
         kStart_ = std::min(kMax_, 24);
@@ -151,7 +155,7 @@ private:
     }
     // One base step of y to tNew, stage at u1, with the kit's step: TR-BDF2 (tr_) or Newmark with
     // the condensed return map. uGamma: the stage at y.t + γh (NaN: computed here).
-    bool base(Kit<Law>& kt, DynState& y, double tNew, double u1, double uGamma = NAN) {
+    bool base(Kit<Law>& kt, DynState& y, double tNew, double u1, double uGamma = NAN, detail::TrError* err = nullptr) {
         int nIts = 0, lIts = 0;
         const char* why = nullptr;
         double bad = 0;
@@ -160,7 +164,7 @@ private:
         if constexpr (HasAlphaRate<Law>) {
             if (tr_) {
                 if (std::isnan(uGamma)) uGamma = m_.stage.displacement(y.t + detail::kTrGamma * kt.T.h);
-                ok = detail::trBdf2Step(kt.T, law_, kt.prep, m_.stage, uGamma, u1, y, lIts, why, bad);
+                ok = detail::trBdf2Step(kt.T, law_, kt.prep, m_.stage, uGamma, u1, y, lIts, why, bad, err);
             }
         }
         if (!tr_) ok = detail::newmarkStep(kt.K, law_, &kt.prep, u1, y, Coupling::Condensed, nIts, lIts, why, bad);
@@ -193,6 +197,24 @@ private:
         if (!base(full, y1, s.t + h, uFull, gFull) || !base(half, ym, s.t + 0.5 * h, uHalf, gHalf1)) return false;
         y2 = ym;
         return base(half, y2, s.t + h, uFull, gHalf2);
+    }
+    // One TR-BDF2 step h from s with its embedded estimate (AdaptiveOptions::embeddedSlip).
+    bool single(Kit<Law>& kt, const DynState& s, double h, DynState& y, detail::TrError& err) {
+        double u1, ug;
+        if (harmonic_) {
+            const double th = omega_ * s.t + m_.stage.phase(), S = std::sin(th), C = std::cos(th), A = m_.stage.amplitude();
+            u1 = A * (S * kt.cosWh + C * kt.sinWh);
+            ug = A * (S * kt.cosWg + C * kt.sinWg);
+        } else {
+            u1 = m_.stage.displacement(s.t + h);
+            ug = m_.stage.displacement(s.t + detail::kTrGamma * h);
+        }
+        y = s;
+        return base(kt, y, s.t + h, u1, ug, &err);
+    }
+    bool singleFresh(const DynState& s, double h, DynState& y, detail::TrError& err) {
+        Kit<Law> kt(m_.rig, law_, h, omega_, tr_);
+        return single(kt, s, h, y, err);
     }
     bool doubledFresh(const DynState& s, double h, DynState& y1, DynState& ym, DynState& y2) {
         Kit<Law> full(m_.rig, law_, h, omega_, tr_), half(m_.rig, law_, 0.5 * h, omega_, tr_);
@@ -230,6 +252,12 @@ private:
         // in tst_adaptive::randomSetsAgreeAcrossTolerances).
         const double guard = std::abs(y2.law.alpha - y1.law.alpha) / (kAlphaResolution * alphaScale_);
         return std::max(est / allowed, guard);
+    }
+    // The same for a step judged by its embedded estimate: x and h·ẋ, α as the guard.
+    double ratioEmbedded(const detail::TrError& e, double h) const {
+        const double est = std::max(std::abs(e.x), h * std::abs(e.v));
+        const double allowed = o_.tolerance * std::max(scale_, maxAbsX_) * kPerPeriod * kEmbeddedAllowance * h / period_;
+        return std::max(est / allowed, std::abs(e.alpha) / (kAlphaResolution * alphaScale_));
     }
     double trialSlip(const DynState& s, double tau) const;
     double locate(const DynState& s, double h, const DynState& y1);
@@ -285,7 +313,7 @@ private:
     // at TOL 1e-4, 1.9e-5 at 1e-5 on the bench_core set; from h_max/1024 2.4e-5 and 2.7e-6, for
     // 2 % more steps; docs/adaptive.md, session 24).
     int kStart_ = 0, kOnset_ = 0;
-    bool harmonic_ = false, viscous_ = false, tr_ = false;
+    bool harmonic_ = false, viscous_ = false, tr_ = false, embedded_ = false;
     std::array<double, kLevels> hTable_{};
     int kMax_ = 0;
     std::vector<std::optional<Kit<Law>>> cache_;
@@ -455,13 +483,19 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
         if (last) h = tEnd - s.t;
         bool atEnd = last;  // the step ends at tEnd (not when it is cut at a switch inside it)
         bool toOnset = false;  // the step ends at a located stick → slip switch
-        const bool ok = last ? doubledFresh(s, h, y1, ym, y2) : doubled(kit(k), kit(k + 4), s, h, y1, ym, y2);
+        // A slip step by TR-BDF2 is one base step judged by its embedded estimate (err); the
+        // other steps are doubled and extrapolated.
+        const bool one = embedded_ && !s.stuck;
+        detail::TrError err;
+        const bool ok = one ? (last ? singleFresh(s, h, y1, err) : single(kit(k), s, h, y1, err))
+                            : (last ? doubledFresh(s, h, y1, ym, y2) : doubled(kit(k), kit(k + 4), s, h, y1, ym, y2));
         if (!ok) {
             ++rep_.rejected;
             if (k >= kMax_) return fail("base step failed at the smallest step");
             k = std::min(kMax_, k + 4);
             continue;
         }
+        if (one) ym = y2 = y1;
         const bool same = y1.stuck == s.stuck && ym.stuck == s.stuck && y2.stuck == s.stuck;
         bool stuckEnd = y2.stuck, throughout = same && s.stuck;
         if (!same && o_.locateSwitches && relabels < 2) {
@@ -477,7 +511,9 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
             if (tau > 0.0) {
                 h = tau;
                 atEnd = false;
-                if (!doubledFresh(s, h, y1, ym, y2)) { ++rep_.rejected; k = std::min(kMax_, k + 4); continue; }
+                const bool again = one ? singleFresh(s, h, y1, err) : doubledFresh(s, h, y1, ym, y2);
+                if (!again) { ++rep_.rejected; k = std::min(kMax_, k + 4); continue; }
+                if (one) ym = y2 = y1;
                 stuckEnd = s.stuck;  // the step ends at the switch, on s's side of it
                 toOnset = s.stuck;
                 throughout = s.stuck && y1.stuck && ym.stuck && y2.stuck;
@@ -489,7 +525,7 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
                 continue;
             }  // else: at the smallest step, accept the switch inside it (error control only)
         }
-        const double r = ratio(y1, y2, h, throughout);
+        const double r = one ? ratioEmbedded(err, h) : ratio(y1, y2, h, throughout);
         if (!(r <= 1.0) && k < kMax_) {
             ++rep_.rejected;
             // A located step that is too long: regular steps approach the switch instead.
@@ -497,7 +533,9 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
             k = std::max(k, nextLevel(k, r, throughout));
             continue;
         }
-        const DynState next = combine(y1, y2, throughout, stuckEnd);
+        DynState next = y1;
+        if (one) next.stuck = stuckEnd;
+        else next = combine(y1, y2, throughout, stuckEnd);
         if (!std::isfinite(next.x) || !std::isfinite(next.v) || !std::isfinite(next.law.force_N) ||
             !std::isfinite(next.law.alpha))
             return fail("non-finite state");

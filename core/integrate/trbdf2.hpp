@@ -95,12 +95,24 @@ inline double trElasticEndForce(const TrBdf2Constants& K, const DynState& s, dou
     return K.eps * (u1 - x1 - p0);
 }
 
+// Hosea & Shampine's (1996) embedded estimate of a TR-BDF2 step: the third-order TR-X companion
+//   ŷ = y_n + h [(1 − w)/3 f_n + (3w + 1)/3 f_γ + (γ/2)/3 f_{n+1}],   w = √2/4,
+// minus the step's own y_{n+1} = y_n + h [w f_n + w f_γ + (γ/2) f_{n+1}]:
+//   ŷ − y = h [(1 − 4w)/3 f_n + f_γ/3 − (γ/3) f_{n+1}],
+// from the stage derivatives the step already has (no further law evaluation). It estimates the
+// local error of y (second order); y is kept, since ŷ is not L-stable.
+inline constexpr double kTrE0 = (1.0 - std::numbers::sqrt2) / 3.0, kTrE1 = 1.0 / 3.0, kTrE2 = -kTrGamma / 3.0;
+struct TrError {
+    double x = 0, v = 0, alpha = 0;  // ŷ − y of x, ẋ and α
+};
+
 // One TR-BDF2 step of s to stage displacement u1 at s.t + K.h (uGamma: the stage at s.t + γh).
 // s.t is advanced by K.h; s.a is the equilibrium acceleration at the end (Eq. 8); s.slipRate is
 // the second stage's λ̇, s.stuck whether both stages stuck. False (with `why`, `badValue`) on failure.
 template <class Law, class Prepared>
 inline bool trBdf2Step(const TrBdf2Constants& K, const Law& law, Prepared& prep, const StageMotion& stage, double uGamma,
-                       double u1, DynState& s, int& lawIts, const char*& why, double& badValue) {
+                       double u1, DynState& s, int& lawIts, const char*& why, double& badValue,
+                       TrError* err = nullptr) {
     const double d = K.d;
     const double p0 = K.plasticSlip(s);
     // λ̇_n: the slip rate the last stage solved for (s.slipRate, "first same as last"), not
@@ -142,6 +154,13 @@ inline bool trBdf2Step(const TrBdf2Constants& K, const Law& law, Prepared& prep,
     if (!std::isfinite(y1.x) || !std::isfinite(y1.v)) { why = "non-finite slider state (x)"; badValue = y1.x; return false; }
     if (!std::isfinite(F)) { why = "non-finite friction force (F)"; badValue = F; return false; }
     if (!std::isfinite(rm.state.alpha)) { why = "non-finite state variable (alpha)"; badValue = rm.state.alpha; return false; }
+    if (err) {  // stage derivatives f = (y − y*)/d of both stages (each stage is y = y* + d f(y))
+        const double ag = (yg.v - start1.v) * K.invD, a1 = (y1.v - start2.v) * K.invD;
+        const double alg = (yg.alpha - start1.alpha) * K.invD, al1 = (y1.alpha - start2.alpha) * K.invD;
+        err->x = K.h * (kTrE0 * y0.v + kTrE1 * yg.v + kTrE2 * y1.v);
+        err->v = K.h * (kTrE0 * a0 + kTrE1 * ag + kTrE2 * a1);
+        err->alpha = K.h * (kTrE0 * alphaDot0 + kTrE1 * alg + kTrE2 * al1);
+    }
     s.t += K.h;
     s.x = y1.x;
     s.v = y1.v;
