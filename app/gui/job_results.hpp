@@ -31,6 +31,11 @@ struct RunOutcome {
     bool sectionInRun = false;
     double elapsed_ms = 0;       // wall time of the job on the worker
     double cpu_ms = 0;           // CPU time of the job's own thread (the overlaid law's thread not counted)
+    // A first frame at SimulationController::kPreviewTolerance, shown while the run at the
+    // requested (tighter) tolerance is computed; `settings.tolerance` is the preview's, and
+    // `requestedTolerance` the one the refined run of the same job will have.
+    bool preview = false;
+    double requestedTolerance = 0;
     bool ok() const;
     QString failureText() const;  // every failed run's message, in words ("" if all ok)
 };

@@ -122,7 +122,9 @@ int main(int argc, char** argv) {
         else if (analysis == "map")
             QObject::connect(ctl, &stickslip::gui::SimulationController::mapFinished, &w, grabLater);
         else
-            QObject::connect(&w, &stickslip::gui::MainWindow::runShown, &w, grabLater);
+            QObject::connect(&w, &stickslip::gui::MainWindow::runShown, &w, [grabLater](const stickslip::gui::RunOutcome& o) {
+                if (!o.preview) grabLater();  // the refined run, not its first frame
+            });
     }
     if (analysis == "sweep") w.sweepDialog()->start();
     if (analysis == "map") w.mapDialog()->start();

@@ -206,7 +206,12 @@ void MainWindow::showMessage(const QString& text, bool failure) {
 void MainWindow::onRun(const RunOutcome& o) {
     views_->showRun(o);
     ++runsShown_;
-    const QString time = tr("run %1 ms").arg(o.elapsed_ms, 0, 'f', 0);
+    QString time = tr("run %1 ms").arg(o.elapsed_ms, 0, 'f', 0);
+    if (o.preview)
+        time = tr("preview at TOL %1 in %2 ms, refining to TOL %3")
+                   .arg(o.settings.tolerance, 0, 'g', 2)
+                   .arg(o.elapsed_ms, 0, 'f', 0)
+                   .arg(o.requestedTolerance, 0, 'g', 2);
     if (o.ok()) {
         size_t n = 0;
         for (const auto& r : o.runs) n += r.run.samples.size();

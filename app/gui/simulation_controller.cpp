@@ -141,39 +141,65 @@ void SimulationController::jobReturned(JobKind kind, quint64 generation, bool wa
     if ((kind == JobKind::Run || kind == JobKind::Poincare) && s.hasPending) fire();
 }
 
+bool SimulationController::previewFirst(const ModelSettings& settings) {
+    return settings.params.setup == SetupKind::Dynamics && settings.tolerance > 0.0 &&
+           settings.tolerance < kPreviewTolerance;
+}
+
+namespace {
+
+// The runs of one Run job (every law of the settings), with their analyses.
+RunOutcome computeRun(const ModelSettings& settings, quint64 gen, const RunControl& ctl) {
+    QElapsedTimer clock;
+    clock.start();
+    const double cpu0 = threadCpuMs();
+    RunOutcome out;
+    out.generation = gen;
+    out.settings = settings;
+    out.requestedTolerance = settings.tolerance;
+    out.sectionInRun = SimulationController::sectionFromRun(settings);
+    const auto laws = settings.laws();
+    out.runs.resize(laws.size());
+    auto one = [&](size_t i) {
+        out.runs[i].law = laws[i];
+        out.runs[i].run = simulate(settings.paramsFor(laws[i]), ctl);
+        if (out.sectionInRun) out.runs[i].section = sectionOfRun(out.runs[i].run, settings.params.drive.period());
+        analyse(out.runs[i], settings.params.setup);
+    };
+    if (laws.size() == 2) {
+        // The overlaid model runs beside the primary one (2 cores).
+        auto second = std::async(std::launch::async, [&] { one(1); });
+        one(0);
+        second.get();
+    } else {
+        one(0);
+    }
+    out.elapsed_ms = msSince(clock);
+    out.cpu_ms = threadCpuMs() - cpu0;
+    return out;
+}
+
+}  // namespace
+
 void SimulationController::launchRun(const ModelSettings& settings) {
     quint64 gen = 0;
     auto token = beginJob(JobKind::Run, gen);
     emit runStarted(gen);
     QtConcurrent::run(&pool_, [this, token, gen, settings]() {
-        QElapsedTimer clock;
-        clock.start();
-        const double cpu0 = threadCpuMs();
         RunControl ctl;
         ctl.cancel = token.get();
-        RunOutcome out;
-        out.generation = gen;
-        out.settings = settings;
-        out.sectionInRun = sectionFromRun(settings);
-        const auto laws = settings.laws();
-        out.runs.resize(laws.size());
-        auto one = [&](size_t i) {
-            out.runs[i].law = laws[i];
-            out.runs[i].run = simulate(settings.paramsFor(laws[i]), ctl);
-            if (out.sectionInRun)
-                out.runs[i].section = sectionOfRun(out.runs[i].run, settings.params.drive.period());
-            analyse(out.runs[i], settings.params.setup);
-        };
-        if (laws.size() == 2) {
-            // The overlaid model runs beside the primary one (2 cores).
-            auto second = std::async(std::launch::async, [&] { one(1); });
-            one(0);
-            second.get();
-        } else {
-            one(0);
+        if (previewFirst(settings)) {
+            ModelSettings coarse = settings;
+            coarse.tolerance = kPreviewTolerance;
+            RunOutcome first = computeRun(coarse, gen, ctl);
+            first.preview = true;
+            first.requestedTolerance = settings.tolerance;
+            if (!token->load())
+                QMetaObject::invokeMethod(
+                    this, [this, first = std::move(first)]() { emit runFinished(first); }, Qt::QueuedConnection);
         }
-        out.elapsed_ms = msSince(clock);
-        out.cpu_ms = threadCpuMs() - cpu0;
+        RunOutcome out = token->load() ? RunOutcome{} : computeRun(settings, gen, ctl);
+        out.generation = gen;
         const bool cancelled = token->load();
         QMetaObject::invokeMethod(
             this,

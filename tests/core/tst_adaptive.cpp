@@ -102,9 +102,8 @@ private slots:
     // 5 cycles. Coulomb (Newmark + extrapolation, the law exact in closed form, switches
     // located): h_max = T/1000 … T/8000 against the fixed step at T/400 000, slope ≥ 1.8 (seen
     // 2.05). Rate-state by TR-BDF2 (trbdf2.hpp) + extrapolation: T/1000 … T/4000 against the
-    // extrapolated reference (beyond, its floor of ~1e-6), slope ≥ 2 (seen 2.29: slip steps keep
-    // the second-order TR-BDF2 result judged by its embedded estimate, stuck steps the
-    // extrapolated (4y₂ − y₁)/3; 2.99 when slip steps were doubled too, embeddedSlip = false).
+    // extrapolated reference (beyond, its floor of ~1e-6), slope ≥ 2 (seen 2.99: the kept value
+    // (4y₂ − y₁)/3 of a second-order step; 2.29 with AdaptiveOptions::embeddedSlip).
     // Rate-state by the paper's step (trBdf2 off), for comparison: order reduction where h
     // approaches η t_N/ε_T ≈ 4 µs, slope ≥ 1.1 (seen 1.37).
     void observedOrder_data() {
@@ -146,9 +145,9 @@ private slots:
     // paper's second set A = 0.4 mm, ε_T = 1.1e4): monotone in the tolerance and within 2× of
     // it from above (error ≤ 2 TOL); from below only ≥ TOL/50. Rate-state runs are measured
     // against the extrapolated reference (the plain T/400 000 one is itself ~1e-5 off).
-    // Seen (TOL 1e-2 … 1e-5, session 25): Coulomb 1 mm 0.43 0.59 0.70 0.73; Coulomb 0.4 mm 0.39
-    // 0.43 0.52 0.59; rate-state (TR-BDF2, slip steps judged by the embedded estimate) 1 mm
-    // 0.36 0.40 0.57 0.73; rate-state 0.4 mm 0.41 0.62 0.83 0.88.
+    // Seen (TOL 1e-2 … 1e-5, session 24): Coulomb 1 mm 0.43 0.59 0.70 0.73; Coulomb 0.4 mm 0.39
+    // 0.43 0.52 0.59; rate-state (TR-BDF2) 1 mm 0.13 0.18 0.24 0.31; rate-state 0.4 mm 0.22
+    // 0.23 0.29 0.34.
     void errorFollowsTolerance_data() {
         QTest::addColumn<bool>("coulomb");
         QTest::addColumn<double>("amplitude");
@@ -417,8 +416,7 @@ private slots:
     // cycle from rest, error relative to max(max|x|, 5 % of A) (the integrator's own scale):
     // every run succeeds; TR-BDF2 at TOL 1e-4 and 1e-3 is within 2 TOL of TOL 1e-5; the paper's
     // step extrapolated (TOL 1e-5) and the fixed step at T/200 000 agree with it to 1e-3.
-    // Seen on the 60 sets (session 25, embedded estimate in slip): 1.55e-4, 9.35e-4 (max),
-    // 3.75e-4, 6.32e-5. Written after this check
+    // Seen on the 60 sets (session 24): within 3.3e-5 at TOL 1e-4 and 8.5e-4 at 1e-3. Written after this check
     // found three faults on the paper's sets' neighbours (docs/adaptive.md, session 16): α
     // extrapolated to +17.7 in one accepted step, the TR stage's slip rate taken from Φ where
     // the return map held F at 0, and that stage's slip direction at F = 0. C1 > μ lets the

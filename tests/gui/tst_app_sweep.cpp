@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "core/analysis/stick_threshold.hpp"
+#include "core/integrate/simulate.hpp"
 #include "core/presets.hpp"
 #include "model_fixtures.hpp"
 #include "simulation_controller.hpp"
@@ -48,6 +49,52 @@ private slots:
         for (const auto& args : done) {
             const double a = args.at(0).value<RunOutcome>().settings.params.drive.amplitude_m;
             QVERIFY(a == 0.2e-3 || a == 10 * 0.2e-3);   // no intermediate value was computed
+        }
+    }
+
+    // Progressive refinement (SimulationController::kPreviewTolerance): a run at TOL 1e-4 posts
+    // its preview at TOL 1e-3 first, then the run asked for, which equals the core's run sample
+    // for sample; the preview is a different run within its tolerance. A fixed-step run and a
+    // run already at the preview's tolerance post once.
+    void errorControlledRunShowsAPreviewFirst() {
+        SimulationController c;
+        c.setPoincareEnabled(false);
+        QSignalSpy done(&c, &SimulationController::runFinished);
+        ModelSettings s = fig20();
+        s.params.cycles = 5;
+        s.tolerance = 1e-4;
+        c.requestRun(s);
+        QTRY_VERIFY_WITH_TIMEOUT(c.isIdle(), 120000);
+        QCOMPARE(done.count(), 2);
+        const auto first = done.at(0).at(0).value<RunOutcome>(), second = done.at(1).at(0).value<RunOutcome>();
+        QVERIFY(first.preview && !second.preview);
+        QCOMPARE(first.generation, second.generation);
+        QCOMPARE(first.settings.tolerance, SimulationController::kPreviewTolerance);
+        QCOMPARE(first.requestedTolerance, 1e-4);
+        QCOMPARE(second.settings.tolerance, 1e-4);
+        QVERIFY(first.ok() && second.ok());
+        const RunResult direct = simulate(s.paramsFor(LawKind::RateState));
+        const auto& a = first.runs.front().run.samples;
+        const auto& b = second.runs.front().run.samples;
+        QCOMPARE(b.size(), direct.samples.size());
+        QCOMPARE(a.size(), b.size());
+        double xMax = 0, dPreview = 0;
+        for (size_t k = 0; k < b.size(); ++k) {
+            QCOMPARE(b[k].slider_m, direct.samples[k].slider_m);
+            xMax = std::max(xMax, std::abs(b[k].slider_m));
+            dPreview = std::max(dPreview, std::abs(a[k].slider_m - b[k].slider_m));
+        }
+        qInfo("preview vs refined: max |dx| = %.3g of max|x|", dPreview / xMax);
+        QVERIFY(dPreview > 0.0);
+        QVERIFY(dPreview <= 2 * SimulationController::kPreviewTolerance * xMax);
+        for (double tol : {0.0, SimulationController::kPreviewTolerance}) {
+            done.clear();
+            s.tolerance = tol;
+            QVERIFY(!SimulationController::previewFirst(s));
+            c.requestRun(s);
+            QTRY_VERIFY_WITH_TIMEOUT(c.isIdle(), 120000);
+            QCOMPARE(done.count(), 1);
+            QVERIFY(!done.at(0).at(0).value<RunOutcome>().preview);
         }
     }
 

@@ -42,7 +42,7 @@ bool waitForRun(MainWindow& w, Pred pred, RunOutcome* out = nullptr, int timeout
     while (clock.elapsed() < timeout_ms) {
         for (const auto& args : spy) {
             const auto o = args.at(0).value<RunOutcome>();
-            if (pred(o.settings)) {
+            if (!o.preview && pred(o.settings)) {  // a preview is not yet the run of those settings
                 if (out) *out = o;
                 return true;
             }
