@@ -87,12 +87,13 @@ void runAt(benchmark::State& state, SimParams p, long n, double err) {
 // Adaptive integrator (issue 15): error of a run at tolerance tol against references on the
 // same T/100 grid (tr: TR-BDF2 in the law, else the paper's step extrapolated); NaN on failure.
 std::vector<double> adaptiveErrors(const SimParams& p, const std::vector<std::vector<double>>& refs, double tol, bool tr,
-                                   long& steps, long& baseSteps) {
+                                   long& steps, long& baseSteps, bool embedded = false) {
     SimParams q = p;
     q.integration.outputInterval_s = p.drive.period() / 100.0;
     AdaptiveOptions o;
     o.tolerance = tol;
     o.trBdf2 = tr;
+    o.embeddedSlip = embedded;
     const RunResult r = simulateAdaptive(q, o);
     steps = r.stats.steps;
     baseSteps = r.stats.newtonIterations;
@@ -109,11 +110,13 @@ std::vector<double> adaptiveErrors(const SimParams& p, const std::vector<std::ve
     return out;
 }
 
-void runAdaptive(benchmark::State& state, SimParams p, double tol, bool tr, double err, long steps, long baseSteps) {
+void runAdaptive(benchmark::State& state, SimParams p, double tol, bool tr, double err, long steps, long baseSteps,
+                 bool embedded) {
     const DynamicsModel m = DynamicsModel::fromParams(p);
     AdaptiveOptions o;
     o.tolerance = tol;
     o.trBdf2 = tr;
+    o.embeddedSlip = embedded;
     const double tEnd = p.cycles * p.drive.period();
     double cycles = 0;
     for (auto _ : state) {
@@ -153,18 +156,39 @@ int main(int argc, char** argv) {
     const std::vector<double> ref1 = trajectory(p, 400000), ref2 = trajectory(p, 800000);
     std::vector<double> ref(ref1.size());
     for (size_t i = 0; i < ref.size(); ++i) ref[i] = 2.0 * ref2[i] - ref1[i];
-    struct Case { double tol; bool tr; };
-    for (const Case c : {Case{1e-3, true}, Case{1e-4, true}, Case{1e-5, true}, Case{1e-4, false}}) {
+    struct Case { double tol; bool tr; bool embedded; };
+    for (const Case c : {Case{1e-3, true, false}, Case{1e-4, true, false}, Case{1e-5, true, false}, Case{1e-4, false, false},
+                         Case{1e-4, true, true}}) {
         long steps = 0, baseSteps = 0;
-        const std::vector<double> errs = adaptiveErrors(p, {ref, ref1}, c.tol, c.tr, steps, baseSteps);
+        const std::vector<double> errs = adaptiveErrors(p, {ref, ref1}, c.tol, c.tr, steps, baseSteps, c.embedded);
         const double err = errs[0], err1 = errs[1];
-        std::printf("  adaptive %s tol %.0e: %ld accepted steps (%ld base steps) over %g cycles -> error %.3e [%.3e]\n",
-                    c.tr ? "TR-BDF2" : "Newmark+BE", c.tol, steps, baseSteps, p.cycles, err, err1);
+        const char* kind = !c.tr ? "newmark" : (c.embedded ? "trbdf2_embedded" : "trbdf2");
+        std::printf("  adaptive %s tol %.0e: %ld accepted steps (%ld base steps) over %g cycles -> error %.3e [%.3e]\n", kind,
+                    c.tol, steps, baseSteps, p.cycles, err, err1);
         char name[64];
-        std::snprintf(name, sizeof name, "fig20_A1mm/adaptive_%s_tol_%.0e", c.tr ? "trbdf2" : "newmark", c.tol);
+        std::snprintf(name, sizeof name, "fig20_A1mm/adaptive_%s_tol_%.0e", kind, c.tol);
         benchmark::RegisterBenchmark(name, [p, c, err, steps, baseSteps](benchmark::State& st) {
-            runAdaptive(st, p, c.tol, c.tr, err, steps, baseSteps);
+            runAdaptive(st, p, c.tol, c.tr, err, steps, baseSteps, c.embedded);
         })->Unit(benchmark::kMillisecond)->UseRealTime();
+    }
+    // The app's Fig. 20 preset itself (ε_T = 1.1e4: the slider rings while it slides), 5 cycles,
+    // errors only (docs/adaptive.md, session 25: above 2 TOL on this set).
+    {
+        Preset pre;
+        findPreset("fig20", pre);
+        SimParams q = pre.params;
+        q.cycles = 5;
+        const std::vector<double> q1 = trajectory(q, 400000), q2 = trajectory(q, 800000);
+        std::vector<double> qref(q1.size());
+        for (size_t i = 0; i < qref.size(); ++i) qref[i] = 2.0 * q2[i] - q1[i];
+        std::printf("Fig. 20 preset (A = 1 mm, eps_T = 1.1e4), 5 cycles, error against 2 x(800 000) - x(400 000):\n");
+        for (bool embedded : {false, true})
+            for (double tol : {1e-3, 1e-4, 1e-5}) {
+                long steps = 0, baseSteps = 0;
+                const double e = adaptiveErrors(q, {qref}, tol, true, steps, baseSteps, embedded)[0];
+                std::printf("  %s tol %.0e: %ld accepted steps (%ld base steps) -> error %.3e = %.2f tol\n",
+                            embedded ? "TR-BDF2 embedded" : "TR-BDF2 doubled ", tol, steps, baseSteps, e, e / tol);
+            }
     }
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
