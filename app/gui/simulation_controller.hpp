@@ -35,9 +35,9 @@ constexpr int kJobKinds = 4;
 class SimulationController : public QObject {
     Q_OBJECT
 public:
-    // Tolerance of a Run job's first frame (see the header comment): its displacement error,
-    // 4.0e-4 of the amplitude on the Fig. 20 set (bench_core), is below one pixel of a plot
-    // under 2 500 px tall, and below the paper's fixed step at the preset's dt (≈ 7e-4).
+    // Tolerance of a Run job's first frame (see the header comment): its displacement error
+    // (bench_core) is 1.8e-4 of max|x| on the bench set and 1.5e-3 on the Fig. 20 preset, about
+    // one pixel of a plot 700 px tall, and the refined run replaces it once the drag stops.
     static constexpr double kPreviewTolerance = 1e-3;
     // Whether a Run job of these settings posts a preview first.
     static bool previewFirst(const ModelSettings& settings);

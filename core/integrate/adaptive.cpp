@@ -173,13 +173,19 @@ private:
         return ok;
     }
     bool base(Kit<Law>& kt, DynState& y, double tNew) { return base(kt, y, tNew, m_.stage.displacement(tNew)); }
+    // sin and cos of a harmonic stage's phase at t, and its amplitude: what the kits' rotations
+    // turn into the stage displacement at the ends and stages of a step from t.
+    std::array<double, 3> phaseAt(double t) const {
+        const double th = omega_ * t + m_.stage.phase();
+        return {std::sin(th), std::cos(th), m_.stage.amplitude()};
+    }
     // y1: one step h from s; ym, y2: two steps h/2. False if a base step failed. A harmonic stage
     // is advanced from one sincos at s.t by the kits' rotations (angle addition, exact to round-off)
     // instead of a sine per base step (13 % of the run time, measured with perf).
     bool doubled(Kit<Law>& full, Kit<Law>& half, const DynState& s, double h, DynState& y1, DynState& ym, DynState& y2) {
         double uHalf, uFull, gFull = NAN, gHalf1 = NAN, gHalf2 = NAN;
         if (harmonic_) {
-            const double th = omega_ * s.t + m_.stage.phase(), S = std::sin(th), C = std::cos(th), A = m_.stage.amplitude();
+            const auto [S, C, A] = phaseAt(s.t);
             uHalf = A * (S * half.cosWh + C * half.sinWh);
             uFull = A * (S * full.cosWh + C * full.sinWh);
             if (tr_) {  // the stages at s.t + γh, s.t + γh/2 and s.t + h/2 + γh/2
@@ -202,7 +208,7 @@ private:
     bool single(Kit<Law>& kt, const DynState& s, double h, DynState& y, detail::TrError& err) {
         double u1, ug;
         if (harmonic_) {
-            const double th = omega_ * s.t + m_.stage.phase(), S = std::sin(th), C = std::cos(th), A = m_.stage.amplitude();
+            const auto [S, C, A] = phaseAt(s.t);
             u1 = A * (S * kt.cosWh + C * kt.sinWh);
             ug = A * (S * kt.cosWg + C * kt.sinWg);
         } else {
@@ -235,15 +241,17 @@ private:
         y.stuck = stuck;
         return y;
     }
+    // What the estimate of a step of length h may be (error per unit step), times `factor`.
+    double allowance(double h, double factor) const {
+        return o_.tolerance * std::max(scale_, maxAbsX_) * kPerPeriod * factor * h / period_;
+    }
     // Estimate over allowance (error per unit step; accept when ≤ 1).
     double ratio(const DynState& y1, const DynState& y2, double h, bool stuckThroughout) const {
         // x and h·ẋ only. Measured alternatives: adding |ΔF|/k or the α difference (× t_N C1/(r k))
         // makes the estimate stall in slip (the viscoplastic overstress relaxes in η t_N/ε_T ≈ 4 µs
         // at the paper's set, far below any useful step) and the runs 10–1000× slower.
         const double est = std::max(std::abs(y2.x - y1.x), h * std::abs(y2.v - y1.v));
-        const double allowed =
-            o_.tolerance * std::max(scale_, maxAbsX_) * kPerPeriod *
-            (stuckThroughout ? kStuckAllowance : (tr_ ? kTrSlipAllowance : 1.0)) * h / period_;
+        const double allowed = allowance(h, stuckThroughout ? kStuckAllowance : (tr_ ? kTrSlipAllowance : 1.0));
         // Guard, not accuracy: the extrapolation is only meaningful where the one step and the two
         // half steps nearly agree. Where α (whose effect on the strength is exponential, K1 ∝
         // exp(α/r)) differs between them by more than kAlphaResolution·r, the step is not
@@ -256,8 +264,7 @@ private:
     // The same for a step judged by its embedded estimate: x and h·ẋ, α as the guard.
     double ratioEmbedded(const detail::TrError& e, double h) const {
         const double est = std::max(std::abs(e.x), h * std::abs(e.v));
-        const double allowed = o_.tolerance * std::max(scale_, maxAbsX_) * kPerPeriod * kEmbeddedAllowance * h / period_;
-        return std::max(est / allowed, std::abs(e.alpha) / (kAlphaResolution * alphaScale_));
+        return std::max(est / allowance(h, kEmbeddedAllowance), std::abs(e.alpha) / (kAlphaResolution * alphaScale_));
     }
     double trialSlip(const DynState& s, double tau) const;
     double locate(const DynState& s, double h, const DynState& y1);
