@@ -33,12 +33,16 @@ constexpr double kPerPeriod = 1.0;
 // 0.7–1.8 (Coulomb); 100× overshoots TOL up to 17×.
 constexpr double kStuckAllowance = 10.0;
 // With TR-BDF2 the kept value is third order in slip as well, the estimate that of the
-// second-order y₂: slip steps may use kTrSlipAllowance× the allowance. Calibrated (tst_adaptive's
-// four sets, TOL 1e-2 … 1e-5; see docs/adaptive.md): 3 until session 24; 4 once the steps after
-// a closed-form onset restart from h_max/1024 (kOnset), which took the onset's error floor away
-// (error/TOL 0.13–0.34 on the rate-state sets, the 60 random sets within 3.3e-5 at TOL 1e-4 and
-// 8.5e-4 at 1e-3; 5 put one random set at 1.3e-3 and 6 at 3.0e-3 at TOL 1e-3).
-constexpr double kTrSlipAllowance = 4.0;
+// second-order y₂: slip steps may use kTrSlipAllowance× the allowance. How much of that credit
+// the run's error takes up depends on the set, not on the step: on the bench set (ε_T = 1e6) the
+// error stays at 0.23–0.38 TOL for credits 1 … 64 (TOL 1e-4: something else sets it), on the
+// app's Fig. 20 preset (A = 1 mm, ε_T = 1.1e4), whose error grows while the slider slips and
+// rings, it grows in proportion (TOL 1e-4: 0.65, 1.37, 2.91, 10.7 TOL at
+// credits 1, 3, 4, 16; docs/adaptive.md, session 26). Calibrated on tst_adaptive's six sets
+// (TOL 1e-2 … 1e-5, the preset among them since session 26): 3, the largest of 2, 3, 4 that keeps
+// every set within 2 TOL (the preset at 1.09–1.37 TOL over 20 cycles; 4, used in session 24–25,
+// put it at 2.91), for 11 % more base steps on the bench set than 4.
+constexpr double kTrSlipAllowance = 3.0;
 // Slip steps judged by TR-BDF2's embedded estimate (AdaptiveOptions::embeddedSlip): the estimate
 // is that of the kept value, so the allowance is the plain one. Calibrated like the above.
 constexpr double kEmbeddedAllowance = 1.0;
