@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <type_traits>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <utility>
@@ -32,19 +33,27 @@ constexpr double kPerPeriod = 1.0;
 // 1e-2 … 1e-5): a third of the stuck steps, error/TOL still 0.5–1.8 (rate-state to 1e-4) and
 // 0.7–1.8 (Coulomb); 100× overshoots TOL up to 17×.
 constexpr double kStuckAllowance = 10.0;
-// With TR-BDF2 the kept value is third order in slip as well, the estimate that of the
-// second-order y₂: slip steps may use kTrSlipAllowance× the allowance. How much of that credit
-// the run's error takes up depends on the set, not on the step: on the bench set (ε_T = 1e6) the
-// error stays at 0.23–0.38 TOL for credits 1 … 64 (TOL 1e-4: something else sets it), on the
-// app's Fig. 20 preset (A = 1 mm, ε_T = 1.1e4), whose error grows while the slider slips and
-// rings, it grows in proportion (TOL 1e-4: 0.65, 1.37, 2.91, 10.7 TOL at
-// credits 1, 3, 4, 16; docs/adaptive.md, session 26). Calibrated on tst_adaptive's six sets
-// (TOL 1e-2 … 1e-5, the preset among them since session 26): 3, the largest of 2, 3, 4 that keeps
-// every set within 2 TOL (the preset at 1.09–1.37 TOL over 20 cycles; 4, used in session 24–25,
-// put it at 2.91), for 11 % more base steps on the bench set than 4.
-constexpr double kTrSlipAllowance = 3.0;
+// TR-BDF2 slip steps are judged by an estimate of the error of what is kept, the extrapolated
+// (4y₂ − y₁)/3, not of y₂ (ratio()): two third-order values of the step are at hand, that
+// extrapolation and the TR-X companion ŷ₁ of the one step h (Hosea & Shampine; trbdf2.hpp's
+// TrError is ŷ₁ − y₁, formed from stage derivatives the step already has), and their difference
+// is the kept value's error estimate. Until session 25 the estimate was that of
+// y₂ with a credit of 3–4× the allowance: on the bench set (ε_T = 1e6) the error did not move for
+// credits 1 … 64, on the app's Fig. 20 preset (ε_T = 1.1e4) it grew in proportion (2.91 TOL at
+// TOL 1e-4 with 4; docs/adaptive.md, session 26).
+//
+// Velocity errors of slip steps count as displacement errors over the time a velocity error acts
+// before the rig's ringing turns it round, 1/ω_n (ω_n = √(k/m), at least the forcing frequency),
+// not over one step: on the preset the slider rings while it slides and those errors were what
+// the per-step weight h missed. Such an estimate cannot fall below the round-off of a stage
+// velocity, which TR-BDF2 forms as a difference quotient (x − x*)/d over the stage length
+// d = γh/2: the floor is kRoundoffUlps·ε·|x|/d. Measured at the smallest steps (h = 1.6e-10 s,
+// bench set, TOL 1e-5, no floor): the estimate's velocity part sits at 4–32 ε|x|/d there, and
+// the steps after a slip onset shrank to that size chasing it (10 M steps, 4 000 TOL off); with
+// 2.9 ε|x|/d as the floor they still did, with 32 they do not (session 26).
+constexpr double kRoundoffUlps = 32.0;
 // Slip steps judged by TR-BDF2's embedded estimate (AdaptiveOptions::embeddedSlip): the estimate
-// is that of the kept value, so the allowance is the plain one. Calibrated like the above.
+// is that of the kept value, so the allowance is the plain one.
 constexpr double kEmbeddedAllowance = 1.0;
 // Largest difference of α between the one-step and the two-half-step results of an accepted
 // step, in units of the law's α scale (r of K1(α) = C1 (exp(α/r) − 1)): 10 % in the strength's
@@ -115,6 +124,7 @@ public:
         embedded_ = tr_ && o.embeddedSlip;
         if constexpr (requires { law.params.r; }) alphaScale_ = law.params.r;
         omega_ = harmonic_ ? m.stage.omega() : 0.0;
+        ringTime_ = 1.0 / std::max(std::sqrt(m.rig.stiffness_N_per_m / m.rig.mass_kg), 2.0 * std::numbers::pi / period_);
         kStart_ = std::min(kMax_, 24);
         kOnset_ = std::min(kMax_, kStart_ + 16);
         if constexpr (requires { Law::kElasticStick; }) {
@@ -204,7 +214,9 @@ private:
         }
         y1 = s;
         ym = s;
-        if (!base(full, y1, s.t + h, uFull, gFull) || !base(half, ym, s.t + 0.5 * h, uHalf, gHalf1)) return false;
+        errFull_ = {};
+        if (!base(full, y1, s.t + h, uFull, gFull, tr_ ? &errFull_ : nullptr) || !base(half, ym, s.t + 0.5 * h, uHalf, gHalf1))
+            return false;
         y2 = ym;
         return base(half, y2, s.t + h, uFull, gHalf2);
     }
@@ -249,13 +261,22 @@ private:
     double allowance(double h, double factor) const {
         return o_.tolerance * std::max(scale_, maxAbsX_) * kPerPeriod * factor * h / period_;
     }
-    // Estimate over allowance (error per unit step; accept when ≤ 1).
-    double ratio(const DynState& y1, const DynState& y2, double h, bool stuckThroughout) const {
+    // Estimate over allowance (error per unit step; accept when ≤ 1). errFull: the TR-X estimate
+    // of y1 (TR-BDF2 slip steps; see kRoundoffUlps for the estimate of the kept value).
+    double ratio(const DynState& y1, const DynState& y2, double h, bool stuckThroughout, const detail::TrError& errFull) const {
         // x and h·ẋ only. Measured alternatives: adding |ΔF|/k or the α difference (× t_N C1/(r k))
         // makes the estimate stall in slip (the viscoplastic overstress relaxes in η t_N/ε_T ≈ 4 µs
         // at the paper's set, far below any useful step) and the runs 10–1000× slower.
-        const double est = std::max(std::abs(y2.x - y1.x), h * std::abs(y2.v - y1.v));
-        const double allowed = allowance(h, stuckThroughout ? kStuckAllowance : (tr_ ? kTrSlipAllowance : 1.0));
+        double est = std::max(std::abs(y2.x - y1.x), h * std::abs(y2.v - y1.v));
+        double allowed = allowance(h, stuckThroughout ? kStuckAllowance : 1.0);
+        if (tr_ && !stuckThroughout) {
+            // ŷ₁ − kept = (ŷ₁ − y₁) − (4/3)(y₂ − y₁): both third order, so this is O(h⁴).
+            const double ex = errFull.x - (4.0 / 3.0) * (y2.x - y1.x), ev = errFull.v - (4.0 / 3.0) * (y2.v - y1.v);
+            const double wv = std::max(h, ringTime_);
+            est = std::max(std::abs(ex), wv * std::abs(ev));
+            const double d = 0.5 * detail::kTrGamma * h;
+            allowed = std::max(allowed, kRoundoffUlps * std::numeric_limits<double>::epsilon() * std::max(scale_, maxAbsX_) * wv / d);
+        }
         // Guard, not accuracy: the extrapolation is only meaningful where the one step and the two
         // half steps nearly agree. Where α (whose effect on the strength is exponential, K1 ∝
         // exp(α/r)) differs between them by more than kAlphaResolution·r, the step is not
@@ -302,9 +323,11 @@ private:
         return detail::illinois(g, 0.0, glo, tau, ghi, 1e-12 * tau, true);
     }
     int nextLevel(int k, double r, bool stuck) const {
-        // est/h ∝ h² in both regimes: the estimate is on x, whose local error is O(h³) also in slip
+        // est/h ∝ h² for y₂'s estimate: the estimate is on x, whose local error is O(h³) also in slip
         // (backward Euler's O(h²) force error enters x with h²/m). An exponent 1 in slip, tried
         // first, rejected 32 % of the attempts (now ~2 %; 31–41 % fewer base steps, measured).
+        // TR-BDF2 slip steps' estimate is O(h⁴) (kRoundoffUlps), but the cube root took 1–9 % more
+        // base steps on the bench set than this square root (session 26).
         (void)stuck;
         const double f = 0.85 / std::sqrt(std::max(r, 1e-10));
         const int dk = -static_cast<int>(std::floor(4.0 * std::log2(std::clamp(f, 0.0625, 2.0))));
@@ -315,6 +338,7 @@ private:
     const Law& law_;
     const AdaptiveOptions& o_;
     double period_ = 1, hMax_ = 0, hMin_ = 0, scale_ = 0, maxAbsX_ = 0, omega_ = 0, alphaScale_ = 1;
+    double ringTime_ = 0;  // 1/ω_n, ω_n = √(k/m) (at least 2π/period_): see kRoundoffUlps
     // Levels the steps restart from: kStart_ = h_max/64, where the first steps resolve the start
     // from rest (and, in the scheme's own path, a slip onset); kOnset_ = h_max/1024 (T/32 768)
     // after an onset located on the closed form. The onset starts the law's transients (the
@@ -331,6 +355,7 @@ private:
     std::optional<detail::StuckFlow> flow_;  // closed-form stick (laws elastic in stick, harmonic stage)
     std::vector<std::optional<detail::StuckFlow::Step>> flowSteps_;
     AdaptiveReport rep_;
+    detail::TrError errFull_;  // TR-X estimate of the last doubled attempt's one step (TR-BDF2)
 };
 
 // Φ_trial (Eq. 1) of the elastic predictor of a step of length τ from s: the same arithmetic as
@@ -536,7 +561,7 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
                 continue;
             }  // else: at the smallest step, accept the switch inside it (error control only)
         }
-        const double r = one ? ratioEmbedded(err, h) : ratio(y1, y2, h, throughout);
+        const double r = one ? ratioEmbedded(err, h) : ratio(y1, y2, h, throughout, errFull_);
         if (!(r <= 1.0) && k < kMax_) {
             ++rep_.rejected;
             // A located step that is too long: regular steps approach the switch instead.

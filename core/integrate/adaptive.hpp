@@ -15,7 +15,10 @@
 // so with one step h (y₁) and two steps h/2 (y₂) per accepted step
 //   y = (4 y₂ − y₁)/3   removes c2 (TR-BDF2 always; Newmark while stuck),
 //   y = 2 y₂ − y₁       removes c1 (Newmark while slipping),
-// and y₂ − y₁ is the embedded error estimate (of y₂, so conservative for y). A switch inside
+// and y₂ − y₁ is the embedded error estimate (of y₂, so conservative for y). TR-BDF2 slip steps
+// are judged instead by the difference of two third-order values, y and the scheme's TR-X
+// companion of y₁ (the error of what is kept), with velocity errors weighted by the rig's ringing
+// time 1/ω_n (adaptive.cpp, kRoundoffUlps). A switch inside
 // a step would spoil both (the solution has a kink there), so the step is cut at the switch:
 // the stick → slip time is the root of the trial slip function Φ_trial(τ) of the scheme's own
 // elastic step of length τ (Eq. 1; Illinois), the slip → stick time the largest τ whose step
