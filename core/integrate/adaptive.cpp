@@ -267,15 +267,18 @@ private:
         // x and h·ẋ only. Measured alternatives: adding |ΔF|/k or the α difference (× t_N C1/(r k))
         // makes the estimate stall in slip (the viscoplastic overstress relaxes in η t_N/ε_T ≈ 4 µs
         // at the paper's set, far below any useful step) and the runs 10–1000× slower.
-        double est = std::max(std::abs(y2.x - y1.x), h * std::abs(y2.v - y1.v));
-        double allowed = allowance(h, stuckThroughout ? kStuckAllowance : 1.0);
+        double est = 0, allowed = 0;
         if (tr_ && !stuckThroughout) {
             // ŷ₁ − kept = (ŷ₁ − y₁) − (4/3)(y₂ − y₁): both third order, so this is O(h⁴).
             const double ex = errFull.x - (4.0 / 3.0) * (y2.x - y1.x), ev = errFull.v - (4.0 / 3.0) * (y2.v - y1.v);
             const double wv = std::max(h, ringTime_);
             est = std::max(std::abs(ex), wv * std::abs(ev));
             const double d = 0.5 * detail::kTrGamma * h;
-            allowed = std::max(allowed, kRoundoffUlps * std::numeric_limits<double>::epsilon() * std::max(scale_, maxAbsX_) * wv / d);
+            allowed = std::max(allowance(h, 1.0),
+                               kRoundoffUlps * std::numeric_limits<double>::epsilon() * std::max(scale_, maxAbsX_) * wv / d);
+        } else {
+            est = std::max(std::abs(y2.x - y1.x), h * std::abs(y2.v - y1.v));
+            allowed = allowance(h, stuckThroughout ? kStuckAllowance : 1.0);
         }
         // Guard, not accuracy: the extrapolation is only meaningful where the one step and the two
         // half steps nearly agree. Where α (whose effect on the strength is exponential, K1 ∝
