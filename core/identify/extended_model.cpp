@@ -149,16 +149,12 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
     if (R > 0.0) {  // slides to zero force within the step
         x = hi;
     } else {
-        // The rate-state law's own solve, warm-started at Newton's step from Δλ = 0, where
-        // R = Φ_trial and R' = dR0 are known without an evaluation (dα/dΔλ = −α_n/D_c in both
-        // state steps): −Φ_trial/dR0 includes the state's first-order response, which the
-        // elastic–viscous predictor Φ_trial/(ε + η t_N/Δt) leaves out. On D05 that takes 2.91
-        // residual evaluations per slipping step against 3.26 (docs/identify-results.md,
-        // session 27). Beyond the bracket the solve starts from Δλ = 0 itself.
+        // The rate-state law's own solve, from the elastic–viscous predictor Φ_trial/(ε + η t_N/Δt)
+        // (as a warm start; from Δλ = 0, where R = Φ_trial and dα/dΔλ = −α_n/D_c in both state
+        // steps, when the predictor is beyond the bracket).
         const double dR0 = -(eps + visc) + tN * c1 * invR * e0 * st.alpha * invDc;
-        const double hint = dR0 < 0.0 ? -phiTrial / dR0 : phiTrial / (eps + visc);
         const SlipRoot root = solveSlip([&](double xx, double& Rx, double& dRx) { eval(xx, Rx, dRx, alpha); }, 0.0, phiTrial,
-                                        dR0, 0.0, hi, hint, 1e-12 * (a + tN));
+                                        dR0, 0.0, hi, phiTrial / (eps + visc), 1e-12 * (a + tN));
         x = root.x;
         dR = root.dR;
         res.iterations = root.iterations;
