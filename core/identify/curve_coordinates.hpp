@@ -24,6 +24,8 @@ public:
     // physical bounds of C1 and η, and returns an active object. Else an inactive one.
     static CurveCoordinates install(std::vector<FitParameter>& params, const std::vector<ParameterScan>& scans);
     bool active() const { return active_; }
+    // Whether `name` is one of the two coordinates install() writes (κ or s).
+    static bool isCoordinate(const std::string& name) { return name == kCurvature || name == kSlope; }
 
     // C1 = κ v_c², η = s + κ v_c from `vals` (problem order) into `values`, replacing κ and s.
     void toLaw(const std::vector<double>& vals, std::map<std::string, double>& values) const;

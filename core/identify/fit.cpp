@@ -196,13 +196,40 @@ public:
             }
         }
         const std::vector<PointEvaluator::Ptr> rs = ev_.evaluate(pts);
+        // A forward point where the model cannot be evaluated (the edge of a feasible region
+        // that is not a box in the solver's coordinates, e.g. curve_coordinates.hpp): the
+        // backward point instead, all such points requested together.
+        std::vector<size_t> back;
+        std::vector<std::vector<double>> backPts;
+        if (!central)
+            for (size_t j = 0; j < p_; ++j)
+                if (!rs[j]->ok) {
+                    std::vector<double> zm = z;
+                    zm[j] = z[j] - delta[j];
+                    back.push_back(j);
+                    backPts.push_back(std::move(zm));
+                }
+        const std::vector<PointEvaluator::Ptr> rb = backPts.empty() ? std::vector<PointEvaluator::Ptr>{} : ev_.evaluate(backPts);
         double* J = jacobians[0];  // row-major m × p
         for (size_t j = 0; j < p_; ++j) {
-            const PointEvaluator::Result& rp = *rs[central ? 2 * j : j];
-            const PointEvaluator::Result& rm = central ? *rs[2 * j + 1] : *base;
-            if (!rp.ok || !rm.ok) return false;
+            const PointEvaluator::Result* rp = rs[central ? 2 * j : j].get();
+            const PointEvaluator::Result* rm = central ? rs[2 * j + 1].get() : base.get();
+            double span = central ? 2 * delta[j] : delta[j];
+            if (central && rp->ok != rm->ok) {  // one side infeasible: one-sided from the point itself
+                (rp->ok ? rm : rp) = base.get();
+                span = delta[j];
+            } else if (!central && !rp->ok) {
+                const size_t b = static_cast<size_t>(std::find(back.begin(), back.end(), j) - back.begin());
+                rp = base.get();
+                rm = rb[b].get();
+            }
+            if (!rp->ok || !rm->ok) return false;
             const double scale = central ? (1.0 / delta[j]) / 2 : 1.0 / delta[j];
-            for (size_t i = 0; i < m_; ++i) J[i * p_ + j] = (rp.r[i] - rm.r[i]) * scale;
+            // The same arithmetic as before when both sides were evaluated (bit for bit).
+            if (span == (central ? 2 * delta[j] : delta[j]))
+                for (size_t i = 0; i < m_; ++i) J[i * p_ + j] = (rp->r[i] - rm->r[i]) * scale;
+            else
+                for (size_t i = 0; i < m_; ++i) J[i * p_ + j] = (rp->r[i] - rm->r[i]) / span;
         }
         return true;
     }
@@ -456,15 +483,19 @@ FitResult fitLeastSquares(const FitProblem& prob) {
     const std::vector<PointEvaluator::Ptr> rd = evaluator.evaluate(displaced);
     Eigen::MatrixXd J(m, p);
     for (size_t k = 0; k < p; ++k) {
-        const PointEvaluator::Result& rp = *rd[2 * k];
-        const PointEvaluator::Result& rm = *rd[2 * k + 1];
-        if (!rp.ok || !rm.ok) {
+        // A side where the model cannot be evaluated (the edge of a feasible region that is not
+        // a box in these coordinates, e.g. curve_coordinates.hpp) is replaced by the optimum:
+        // a one-sided difference there.
+        const PointEvaluator::Result& rp = rd[2 * k]->ok ? *rd[2 * k] : *base;
+        const PointEvaluator::Result& rm = rd[2 * k + 1]->ok ? *rd[2 * k + 1] : *base;
+        const double span = (rd[2 * k]->ok ? hPlus[k] : 0.0) + (rd[2 * k + 1]->ok ? hMinus[k] : 0.0);
+        if (!(span > 0.0)) {
             res.status = FitStatus::Failed;
             res.message = "model cannot be evaluated next to the optimum (parameter " + res.freeNames[k] + ")";
             return res;
         }
         for (size_t i = 0; i < m; ++i)
-            J(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = (rp.r[i] - rm.r[i]) / (hPlus[k] + hMinus[k]);
+            J(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = (rp.r[i] - rm.r[i]) / span;
     }
     double ss = 0.0;
     for (double v : r0) ss += v * v;

@@ -10,6 +10,7 @@
 
 #include "../dsp/stats.hpp"
 #include "../integrate/dynamics.hpp"
+#include "curve_coordinates.hpp"
 #include "identify_internal.hpp"
 
 namespace stickslip::identify::detail {
@@ -65,6 +66,16 @@ std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const 
     return ps;
 }
 
+// C1 and η, where free, strictly inside their bounds (by 1e-6 of the range, fit.cpp's "on a bound").
+static bool insideLawBounds(const std::vector<FitParameter>& ps) {
+    for (const FitParameter& fp : ps) {
+        if (!fp.free || (fp.name != "C1" && fp.name != "eta")) continue;
+        const double tol = 1e-6 * (fp.upper - fp.lower);
+        if (!(fp.value > fp.lower + tol && fp.value < fp.upper - tol)) return false;
+    }
+    return true;
+}
+
 FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                    const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from) {
     FitOutcome out;
@@ -83,6 +94,15 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
             for (int k = 0; k < nGrid; ++k) sc.values.push_back(lo * std::pow(hi / lo, k / (nGrid - 1.0)));
             prob.scans.push_back(sc);
         }
+    // Warm-started fits in the spring–mass set-up move in the steady-state curve's coordinates
+    // (κ = C1/v_c², s = η − C1/v_c; curve_coordinates.hpp), as `fit` does: in C1, η, v_c the
+    // cost has a long curved valley along which the solver crawls to its iteration cap. Only
+    // from a start inside C1's and η's bounds: on a bound the valley ends there, and a bound of
+    // C1 or η is not a bound of κ, s (the solver cannot slide along it; fit.hpp's one-sided
+    // differences keep it from failing when it ends next to one).
+    CurveCoordinates curve;
+    if (cx.anyDynamics && cx.opt->curveCoordinates && !scanStiffness && insideLawBounds(prob.parameters))
+        curve = CurveCoordinates::install(prob.parameters, prob.scans);
     prob.residualCount = residualCount(cx, idx);
     prob.multistarts = multistarts;
     prob.seed = cx.opt->seed;
@@ -99,9 +119,18 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
         for (const auto& p : prob.parameters) v.push_back(p.name);
         return v;
     }();
-    prob.residuals = [&cx, &spec, &idx, names](const std::vector<double>& pv, std::vector<double>& r) {
-        std::map<std::string, double> vals;
+    // The law's values of a point in the solver's coordinates; false outside C1's or η's bounds
+    // (the box in κ, s, v_c is not the box in C1, η, v_c).
+    const auto lawValues = [names, curve](const std::vector<double>& pv, std::map<std::string, double>& vals) {
+        vals.clear();
         for (size_t i = 0; i < names.size(); ++i) vals[names[i]] = pv[i];
+        if (!curve.active()) return true;
+        curve.toLaw(pv, vals);
+        return curve.withinLawBounds(vals);
+    };
+    prob.residuals = [&cx, &spec, &idx, lawValues](const std::vector<double>& pv, std::vector<double>& r) {
+        std::map<std::string, double> vals;
+        if (!lawValues(pv, vals)) return false;
         double mass = kNaN;
         const ExtendedModel m = buildModel(cx, spec, vals, mass);
         r.clear();
@@ -121,14 +150,16 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
             o += cx.runs[i].size() * (cx.runs[i].run->setup == SetupKind::Dynamics ? 2 : 1);
         }
     }
-    prob.batchResiduals = [&cx, &spec, &idx, names, offsets](const std::vector<std::vector<double>>& points,
-                                                             std::vector<std::vector<double>>& rs, std::vector<char>& okOut) {
+    prob.batchResiduals = [&cx, &spec, &idx, names, offsets, lawValues](const std::vector<std::vector<double>>& points,
+                                                                        std::vector<std::vector<double>>& rs,
+                                                                        std::vector<char>& okOut) {
         const size_t nRuns = idx.size(), nTasks = points.size() * nRuns;
         std::vector<ExtendedModel> models(points.size());
         std::vector<double> masses(points.size(), kNaN);
+        std::vector<char> inBounds(points.size(), 1);
         for (size_t pt = 0; pt < points.size(); ++pt) {
             std::map<std::string, double> vals;
-            for (size_t i = 0; i < names.size(); ++i) vals[names[i]] = points[pt][i];
+            inBounds[pt] = lawValues(points[pt], vals) ? 1 : 0;
             models[pt] = buildModel(cx, spec, vals, masses[pt]);
         }
         rs.resize(points.size());
@@ -142,7 +173,8 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
                 for (size_t q : distinct) {
                     bool same = true;
                     for (size_t i = 0; i < names.size() && same; ++i)
-                        same = !lawParameter(names[i]) || points[q][i] == points[pt][i];
+                        same = !(lawParameter(names[i]) || CurveCoordinates::isCoordinate(names[i])) ||
+                               points[q][i] == points[pt][i];
                     if (same) { lawOf[pt] = q; break; }
                 }
                 if (lawOf[pt] == pt) distinct.push_back(pt);
@@ -151,11 +183,13 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
         std::vector<char> lawOk(laws.size(), 0);
         parallelFor(distinct.size() * nRuns, [&](size_t t) {
             const size_t pt = distinct[t / nRuns], k = t % nRuns;
+            if (!inBounds[pt]) return;
             lawOk[pt * nRuns + k] = simulateLawRun(cx, cx.runs[idx[k]], models[pt], laws[pt * nRuns + k]) ? 1 : 0;
         });
         std::vector<char> ok(nTasks, 0);
         parallelFor(nTasks, [&](size_t t) {
             const size_t pt = t / nRuns, k = t % nRuns;
+            if (!inBounds[pt]) return;
             const LawRun* law = nullptr;
             if (!spec.segments) {
                 const size_t l = lawOf[pt] * nRuns + k;
@@ -180,6 +214,7 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
         out.message = out.fit.message;
         return out;
     }
+    if (curve.active()) curve.restore(out.fit);
     out.ok = true;
     for (size_t i = 0; i < out.fit.names.size(); ++i) {
         out.values[out.fit.names[i]] = out.fit.values[i];

@@ -308,6 +308,42 @@ private slots:
         QVERIFY(std::abs(early.value("b") - all.value("b")) < 1e-3 * all.stderrOf("b"));
     }
 
+    // A model that cannot be evaluated beyond an edge inside the box: the data pull the slope
+    // past the edge, and the fit ends on the edge with one-sided differences there, for the
+    // solver's Jacobian (forward and central) and for the standard errors, instead of failing.
+    // (On the edge the solver cannot slide along it: every step with a component across fails,
+    // so b stops short of its optimum 0.55 given a = 2. A caller that knows its feasible region
+    // maps points onto it instead; identify does for C1 and eta, identify_fit.cpp.)
+    void oneSidedDifferencesAtAnInfeasibleEdge() {
+        std::vector<double> t, y;
+        for (int i = 0; i < 50; ++i) {
+            t.push_back(i / 49.0);
+            y.push_back(2.5 * t.back() + 0.3 + 0.01 * std::sin(13.0 * i));
+        }
+        for (JacobianKind kind : {JacobianKind::Forward, JacobianKind::Central}) {
+            FitProblem p;
+            p.parameters = {{"a", 1.0, 0.0, 10.0, true, ParamScale::Linear}, {"b", 0.0, -5.0, 5.0, true, ParamScale::Linear}};
+            p.residualCount = t.size();
+            p.residuals = [t, y](const std::vector<double>& v, std::vector<double>& r) {
+                if (v[0] > 2.0) return false;
+                for (size_t i = 0; i < t.size(); ++i) r[i] = v[0] * t[i] + v[1] - y[i];
+                return true;
+            };
+            p.multistarts = 1;
+            p.jacobian = kind;
+            const FitResult res = fitLeastSquares(p);
+            QVERIFY2(res.ok(), res.message.c_str());
+            qInfo("%s: a = %.6f, b = %.6f +- %.3g", kind == JacobianKind::Forward ? "forward" : "central", res.value("a"),
+                  res.value("b"), res.stderrOf("b"));
+            QVERIFY(res.value("a") <= 2.0);
+            QVERIFY(res.value("a") > 1.98);
+            QVERIFY(std::isfinite(res.stderrOf("a")) && res.stderrOf("a") > 0);
+            QVERIFY(std::isfinite(res.stderrOf("b")) && res.stderrOf("b") > 0);
+            // Lower than at the start (a = 1, b = 0: cost ½ Σ (1.5 t + 0.3)² ≈ 19.7).
+            QVERIFY(res.cost < 5.0);
+        }
+    }
+
     // A frequency fit y = sin(ω t) has a narrow valley at the true ω and many local minima: the
     // local solver from ω = 3 stays in a wrong one; a scan over a log grid of ω (more points
     // than the evaluator's memory holds: that crashed once) starts it in the right valley.
