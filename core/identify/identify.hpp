@@ -282,6 +282,9 @@ struct IdentifyResult {
     long fits = 0;
     int decimation = 1;       // samples used: every decimation-th
     std::string jacobian = "forward";  // the solvers' Jacobian while iterating (IdentifyOptions::forwardJacobian)
+    // The warm-started fits' coordinates for C1, η: "steady_state_curve" (IdentifyOptions::
+    // curveCoordinates, spring–mass set-up, from a start inside their bounds) or "law".
+    std::string coordinates = "law";
     std::string stateStep = "constant_rate";  // IdentifyOptions::exactStateStep: "constant_rate" or "backward_euler"
     std::string lawInput = "recorded_slip";   // IdentifyOptions::recordedStepSlip: "recorded_slip" or "linear"
     double slipEpisodes = 0;  // independent units of the BIC (slip episodes in the fit runs)

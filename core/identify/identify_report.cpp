@@ -150,6 +150,7 @@ nlohmann::json toJson(const IdentifyResult& r) {
                       {"held_out_alpha", num(r.heldOutAlpha)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
                       {"tau_int_samples", num(r.tauInt)},
                       {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation}, {"jacobian", r.jacobian},
+                      {"coordinates", r.coordinates},
                       {"state_step", r.stateStep}, {"law_input", r.lawInput},
                       {"residual", r.residual}, {"segments", r.segmentsUsed}};
     j["wall_time_s"] = r.wallTime_s;

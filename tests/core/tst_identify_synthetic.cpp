@@ -192,6 +192,8 @@ private slots:
         qInfo("small D02: held-out NRMSE before %.4f after %.4f, %d effects added", r.before.validationNrmse,
               r.after.validationNrmse, int(r.effectsAdded.size()));
         QVERIFY(std::isfinite(r.before.fitNrmse) && r.before.fitNrmse > 0 && r.before.fitNrmse < 1);
+        // Spring–mass runs: the warm-started fits move in the steady-state curve's coordinates.
+        QCOMPARE(r.coordinates, std::string("steady_state_curve"));
         QCOMPARE(r.candidates.size(), effectCatalogue().size());
         for (const CandidateScore& c : r.candidates)
             QVERIFY2(c.accepted || !c.reason.empty(), c.name.c_str());
