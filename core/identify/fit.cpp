@@ -214,22 +214,17 @@ public:
         for (size_t j = 0; j < p_; ++j) {
             const PointEvaluator::Result* rp = rs[central ? 2 * j : j].get();
             const PointEvaluator::Result* rm = central ? rs[2 * j + 1].get() : base.get();
-            double span = central ? 2 * delta[j] : delta[j];
+            double scale = central ? (1.0 / delta[j]) / 2 : 1.0 / delta[j];
             if (central && rp->ok != rm->ok) {  // one side infeasible: one-sided from the point itself
                 (rp->ok ? rm : rp) = base.get();
-                span = delta[j];
+                scale = 1.0 / delta[j];
             } else if (!central && !rp->ok) {
                 const size_t b = static_cast<size_t>(std::find(back.begin(), back.end(), j) - back.begin());
                 rp = base.get();
                 rm = rb[b].get();
             }
             if (!rp->ok || !rm->ok) return false;
-            const double scale = central ? (1.0 / delta[j]) / 2 : 1.0 / delta[j];
-            // The same arithmetic as before when both sides were evaluated (bit for bit).
-            if (span == (central ? 2 * delta[j] : delta[j]))
-                for (size_t i = 0; i < m_; ++i) J[i * p_ + j] = (rp->r[i] - rm->r[i]) * scale;
-            else
-                for (size_t i = 0; i < m_; ++i) J[i * p_ + j] = (rp->r[i] - rm->r[i]) / span;
+            for (size_t i = 0; i < m_; ++i) J[i * p_ + j] = (rp->r[i] - rm->r[i]) * scale;
         }
         return true;
     }

@@ -143,9 +143,11 @@ struct IdentifyOptions {
     // one `fit` uses. Either way the standard errors are differenced centrally at the optimum
     // and the leave-one-run-out refits (held-out errors, jackknife) iterate with central ones.
     bool forwardJacobian = true;
-    // Spring–mass set-up: every fit moves in the steady-state curve's coordinates κ = C1/v_c²,
-    // s = η − C1/v_c instead of C1, η (curve_coordinates.hpp), as `fit` does; results and
-    // standard errors are reported in C1, η, v_c.
+    // Spring–mass set-up: every fit that starts from a fitted model (leave-one-run-out refits,
+    // candidates, restarts) with C1 and η inside their bounds moves in the steady-state curve's
+    // coordinates κ = C1/v_c², s = η − C1/v_c instead of C1, η (curve_coordinates.hpp), as `fit`
+    // does; results and standard errors are reported in C1, η, v_c. The baseline's fit from the
+    // far start stays in C1, η (docs/identify-results.md, session 28).
     bool curveCoordinates = true;
     // Baseline restart from held-out refits: a leave-one-run-out refit, warm-started from the
     // full fit, that fits ALL the fit runs better than the full fit did shows the full fit

@@ -312,8 +312,9 @@ private slots:
     // past the edge, and the fit ends on the edge with one-sided differences there, for the
     // solver's Jacobian (forward and central) and for the standard errors, instead of failing.
     // (On the edge the solver cannot slide along it: every step with a component across fails,
-    // so b stops short of its optimum 0.55 given a = 2. A caller that knows its feasible region
-    // maps points onto it instead; identify does for C1 and eta, identify_fit.cpp.)
+    // so b stops short of its optimum 0.55 given a = 2. That is why identify moves in the
+    // steady-state curve's coordinates only from a start inside C1's and eta's bounds,
+    // identify_fit.cpp.)
     void oneSidedDifferencesAtAnInfeasibleEdge() {
         std::vector<double> t, y;
         for (int i = 0; i < 50; ++i) {
