@@ -139,8 +139,8 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
                   "the solver's Jacobian by forward differences (default: p residual runs per Jacobian) or by central "
                   "differences (2p, slower); standard errors and leave-one-run-out refits use central differences either way")->capture_default_str();
     cmd->add_flag("--curve-coordinates,!--law-coordinates", o->req.options.curveCoordinates,
-                  "spring-mass set-up: the solver moves in the steady-state curve's coordinates C1/vc^2 and eta - C1/vc "
-                  "(default, as fit does) or in C1, eta themselves")->capture_default_str();
+                  "fits warm-started from a fitted model move in the steady-state curve's coordinates C1/vc^2 and "
+                  "eta - C1/vc (default, both set-ups, as fit --setup dynamics does) or in C1, eta themselves")->capture_default_str();
     cmd->add_flag("--held-out-restart,!--no-held-out-restart", o->req.options.heldOutRestart,
                   "refit the baseline, and a candidate before it is judged, from a leave-one-run-out refit's point, "
                   "and the current model from a round's candidate's point with its effect removed, when that point fits "

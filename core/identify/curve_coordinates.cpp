@@ -25,14 +25,27 @@ CurveCoordinates CurveCoordinates::install(std::vector<FitParameter>& params, co
     cc.c1_ = params[cc.iC1_];
     cc.eta_ = params[cc.iEta_];
     const double vc = params[cc.iVc_].value, C1 = cc.c1_.value, eta = cc.eta_.value;
-    FitParameter kappa{kCurvature, 0.0, 1e-6, 1e9, true, ParamScale::Log};
-    FitParameter slope{kSlope, 0.0, -50.0, 50.0, true, ParamScale::Linear};
+    FitParameter kappa{kCurvature, 0.0, kCurvatureLower, kCurvatureUpper, true, ParamScale::Log};
+    FitParameter slope{kSlope, 0.0, kSlopeLower, kSlopeUpper, true, ParamScale::Linear};
     kappa.value = std::clamp(C1 / (vc * vc), kappa.lower, kappa.upper);
     slope.value = std::clamp(eta - C1 / vc, slope.lower, slope.upper);
     params[cc.iC1_] = kappa;
     params[cc.iEta_] = slope;
     cc.active_ = true;
     return cc;
+}
+
+bool CurveCoordinates::startInside(const std::vector<FitParameter>& params) {
+    const FitParameter *c1 = nullptr, *eta = nullptr, *vc = nullptr;
+    for (const FitParameter& p : params) {
+        if (!p.free) continue;
+        if (p.name == "C1") c1 = &p;
+        if (p.name == "eta") eta = &p;
+        if (p.name == "vc") vc = &p;
+    }
+    if (!c1 || !eta || !vc || !(vc->value > 0)) return false;
+    const double kappa = c1->value / (vc->value * vc->value), s = eta->value - c1->value / vc->value;
+    return kappa > kCurvatureLower && kappa < kCurvatureUpper && s > kSlopeLower && s < kSlopeUpper;
 }
 
 void CurveCoordinates::toLaw(const std::vector<double>& vals, std::map<std::string, double>& values) const {

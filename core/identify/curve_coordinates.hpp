@@ -18,12 +18,17 @@ class CurveCoordinates {
 public:
     static constexpr const char* kCurvature = "C1/vc^2";  // κ, s²/m², log scale in [1e-6, 1e9]
     static constexpr const char* kSlope = "eta-C1/vc";    // s, s/m, linear in [−50, 50]
+    static constexpr double kCurvatureLower = 1e-6, kCurvatureUpper = 1e9, kSlopeLower = -50.0, kSlopeUpper = 50.0;
 
     // When C1, η and v_c are all free in `params` and no scan names C1 or η: rewrites the C1
     // and η entries as κ and s (starting values mapped, clamped to their bounds), remembers the
     // physical bounds of C1 and η, and returns an active object. Else an inactive one.
     static CurveCoordinates install(std::vector<FitParameter>& params, const std::vector<ParameterScan>& scans);
     bool active() const { return active_; }
+    // Whether the start of `params` (C1, η, v_c free) maps strictly inside κ's and s's bounds,
+    // so that install() keeps the start where it is instead of clamping it (a warm start moved
+    // to a bound would be a different start). False when one of the three is not free.
+    static bool startInside(const std::vector<FitParameter>& params);
     // Whether `name` is one of the two coordinates install() writes (κ or s).
     static bool isCoordinate(const std::string& name) { return name == kCurvature || name == kSlope; }
 

@@ -450,6 +450,17 @@ FitResult fitLeastSquares(const FitProblem& prob) {
     res.values = map.allValues(bestZ.data());
     res.converged = bestSummary.termination_type == ceres::CONVERGENCE;
     res.solverSummary = bestSummary.BriefReport() + "\n" + perStart.str();
+    if (!prob.uncertainty) {
+        res.cost = bestCost;
+        res.rms = prob.loss == LossKind::None ? std::sqrt(2.0 * bestCost / static_cast<double>(m))
+                                              : std::numeric_limits<double>::quiet_NaN();
+        for (size_t k = 0; k < p; ++k) res.stderrs[map.freeIdx[k]] = std::numeric_limits<double>::quiet_NaN();
+        res.identifiabilityMessage = "not computed (FitProblem::uncertainty is false)";
+        res.status = cancelled ? FitStatus::Cancelled : FitStatus::Ok;
+        if (cancelled) res.message = "cancelled (best result so far)";
+        res.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return res;
+    }
 
     // Plain residuals and Jacobian (no loss) at the optimum, in internal coordinates: the
     // 2p displaced points are computed together (in parallel when the problem can).

@@ -99,6 +99,11 @@ struct FitProblem {
     int agreeingStarts = 0;
     double sameCostTolerance = 1e-6;
     double conditionLimit = 1e10;      // cond(JᵀJ, scaled to unit diagonal) above this: not identifiable
+    // false: only the optimum is wanted (a refit whose values alone are used, e.g. a
+    // leave-one-run-out refit). The 2p-point Jacobian after the solve is skipped: stderrs are
+    // NaN, correlation and scaledNormal empty, identifiable false, rms from the cost (plain
+    // loss only, else NaN). The optimum itself does not depend on this.
+    bool uncertainty = true;
     const std::atomic<bool>* cancel = nullptr;        // polled between solver iterations
     std::function<void(double fraction)> progress;    // 0..1 over all starts
 

@@ -438,7 +438,7 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
                            ? "recorded_slip"
                            : "linear";
         res.setup = cx.anyDynamics ? "dynamics" : "prescribed";
-        res.coordinates = cx.anyDynamics && opt.curveCoordinates ? "steady_state_curve" : "law";
+        res.coordinates = opt.curveCoordinates ? "steady_state_curve" : "law";
     }
     Loop L(cx, opt, res);
     for (size_t i = 0; i < runs.size(); ++i) (runs[i].validation ? L.valIdx : L.fitIdx).push_back(i);

@@ -143,11 +143,12 @@ struct IdentifyOptions {
     // one `fit` uses. Either way the standard errors are differenced centrally at the optimum
     // and the leave-one-run-out refits (held-out errors, jackknife) iterate with central ones.
     bool forwardJacobian = true;
-    // Spring–mass set-up: every fit that starts from a fitted model (leave-one-run-out refits,
-    // candidates, restarts) with C1 and η inside their bounds moves in the steady-state curve's
-    // coordinates κ = C1/v_c², s = η − C1/v_c instead of C1, η (curve_coordinates.hpp), as `fit`
-    // does; results and standard errors are reported in C1, η, v_c. The baseline's fit from the
-    // far start stays in C1, η (docs/identify-results.md, session 28).
+    // Both set-ups: every fit that starts from a fitted model (leave-one-run-out refits,
+    // candidates, restarts) with C1 and η inside their bounds (and κ, s inside theirs) moves in
+    // the steady-state curve's coordinates κ = C1/v_c², s = η − C1/v_c instead of C1, η
+    // (curve_coordinates.hpp), as `fit --setup dynamics` does; results and standard errors are
+    // reported in C1, η, v_c. The baseline's fit from the far start stays in C1, η
+    // (docs/identify-results.md, sessions 28 and 29).
     bool curveCoordinates = true;
     // Baseline restart from held-out refits: a leave-one-run-out refit, warm-started from the
     // full fit, that fits ALL the fit runs better than the full fit did shows the full fit
@@ -285,7 +286,7 @@ struct IdentifyResult {
     int decimation = 1;       // samples used: every decimation-th
     std::string jacobian = "forward";  // the solvers' Jacobian while iterating (IdentifyOptions::forwardJacobian)
     // The warm-started fits' coordinates for C1, η: "steady_state_curve" (IdentifyOptions::
-    // curveCoordinates, spring–mass set-up, from a start inside their bounds) or "law".
+    // curveCoordinates, from a start inside their bounds) or "law".
     std::string coordinates = "law";
     std::string stateStep = "constant_rate";  // IdentifyOptions::exactStateStep: "constant_rate" or "backward_euler"
     std::string lawInput = "recorded_slip";   // IdentifyOptions::recordedStepSlip: "recorded_slip" or "linear"

@@ -76,8 +76,11 @@ static bool insideLawBounds(const std::vector<FitParameter>& ps) {
     return true;
 }
 
-FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
-                   const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from) {
+// One fit (fitSpec); `curveAllowed`: whether it may move in the curve coordinates, `usedCurve`
+// is set to whether it did.
+static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
+                            const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
+                            FitOutput output, bool curveAllowed, bool& usedCurve) {
     FitOutcome out;
     FitProblem prob;
     prob.parameters = parameters(cx, spec, start);
@@ -94,15 +97,19 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
             for (int k = 0; k < nGrid; ++k) sc.values.push_back(lo * std::pow(hi / lo, k / (nGrid - 1.0)));
             prob.scans.push_back(sc);
         }
-    // Warm-started fits in the spring–mass set-up move in the steady-state curve's coordinates
-    // (κ = C1/v_c², s = η − C1/v_c; curve_coordinates.hpp), as `fit` does: in C1, η, v_c the
-    // cost has a long curved valley along which the solver crawls to its iteration cap. Only
-    // from a start inside C1's and η's bounds: on a bound the valley ends there, and a bound of
-    // C1 or η is not a bound of κ, s (the solver cannot slide along it; fit.hpp's one-sided
-    // differences keep it from failing when it ends next to one).
+    // Warm-started fits move in the steady-state curve's coordinates (κ = C1/v_c², s = η −
+    // C1/v_c; curve_coordinates.hpp), as `fit --setup dynamics` does: in C1, η, v_c the cost has
+    // a long curved valley along which the solver crawls to its iteration cap. In both set-ups:
+    // the valley is the steady-state curve's, whichever way the slip is imposed (the damper's
+    // leave-one-run-out refits reached the cap 26 times in 48 in C1, η, v_c; 11 in κ, s, v_c).
+    // Only from a start inside C1's and η's bounds (on a bound the valley ends there, and a
+    // bound of C1 or η is not a bound of κ, s: the solver cannot slide along it; fit.hpp's
+    // one-sided differences keep it from failing when it ends next to one) whose κ and s lie
+    // inside their own bounds (a start clamped onto them would be another start).
     CurveCoordinates curve;
-    if (cx.anyDynamics && cx.opt->curveCoordinates && !scanStiffness && insideLawBounds(prob.parameters))
+    if (curveAllowed && !scanStiffness && insideLawBounds(prob.parameters) && CurveCoordinates::startInside(prob.parameters))
         curve = CurveCoordinates::install(prob.parameters, prob.scans);
+    usedCurve = curve.active();
     prob.residualCount = residualCount(cx, idx);
     prob.multistarts = multistarts;
     prob.seed = cx.opt->seed;
@@ -114,6 +121,7 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
     prob.functionTolerance = 1e-6;
     prob.parameterTolerance = 1e-6;
     prob.jacobian = cx.opt->forwardJacobian && from == FitStart::Far ? JacobianKind::Forward : JacobianKind::Central;
+    prob.uncertainty = output == FitOutput::Full;
     const auto names = [&] {
         std::vector<std::string> v;
         for (const auto& p : prob.parameters) v.push_back(p.name);
@@ -223,6 +231,10 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
             ++out.nFree;
         }
     }
+    if (output == FitOutput::ValuesOnly) {
+        out.ss = kNaN;
+        return out;
+    }
     double mass = kNaN;
     const ExtendedModel m = buildModel(cx, spec, out.values, mass);
     std::vector<double> r;
@@ -231,6 +243,23 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
         runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments);
         out.ss += ss;
         out.count += n;
+    }
+    return out;
+}
+
+FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
+                   const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
+                   FitOutput output) {
+    bool usedCurve = false;
+    FitOutcome out = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, cx.opt->curveCoordinates,
+                               usedCurve);
+    // A fit in the curve coordinates that fails (its optimum in a corner where a box bound of
+    // v_c meets a bound of C1 or η, which is not a box bound there: no side of a difference can
+    // be evaluated; the damper's 30 lb runs, backlash) is done again in C1, η, v_c from the
+    // same start, where such a corner is a box corner.
+    if (!out.ok && usedCurve && !(cx.opt->cancel && cx.opt->cancel->load())) {
+        FitOutcome law = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, false, usedCurve);
+        if (law.ok) return law;
     }
     return out;
 }
@@ -275,7 +304,8 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
             if (cx.opt->cancel && cx.opt->cancel->load()) break;
             std::vector<size_t> rest;
             for (size_t i : fitIdx) if (i != h) rest.push_back(i);
-            const FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, fits, false, FitStart::NearOptimum);
+            const FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, fits, false, FitStart::NearOptimum,
+                                           FitOutput::ValuesOnly);
             if (!f.ok) continue;
             if (loo) loo->push_back(f.values);
             double mh = kNaN;

@@ -158,9 +158,15 @@ std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const 
 // forward difference's O(δ) error, which would stop it where it started (measured: every
 // refit of a backlash fit, jackknife spread 0).
 enum class FitStart { Far, NearOptimum };
+// What a fit returns. Full: standard errors, correlations and the sum of squares over its runs
+// (for scoring, selection and the report). ValuesOnly: the optimum alone (a leave-one-run-out
+// refit, which is only ever evaluated on its held-out run): the 2p-point Jacobian after the
+// solve and the re-evaluation over its runs are skipped; `values` and `ok` are the same as
+// Full's, `estimates` carry NaN standard errors, ss = NaN and count = 0.
+enum class FitOutput { Full, ValuesOnly };
 FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                    const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness = false,
-                   FitStart from = FitStart::Far);
+                   FitStart from = FitStart::Far, FitOutput output = FitOutput::Full);
 // `loo`, if given, is replaced by the leave-one-run-out refits' parameter values (one per run).
 ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
                      const std::vector<size_t>& valIdx, long& fits,

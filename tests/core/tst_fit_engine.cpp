@@ -345,6 +345,48 @@ private slots:
         }
     }
 
+    // FitProblem::uncertainty = false returns the same optimum without the 2p-point Jacobian
+    // after the solve: fewer residual evaluations, NaN standard errors, no correlations.
+    void valuesOnlyFitSkipsTheCovariance() {
+        std::vector<double> t, y;
+        for (int i = 0; i < 60; ++i) {
+            t.push_back(i / 59.0);
+            y.push_back(std::exp(-1.7 * t.back()) * 3.0 + 0.02 * std::sin(17.0 * i));
+        }
+        for (JacobianKind kind : {JacobianKind::Forward, JacobianKind::Central}) {
+            int calls = 0;
+            FitProblem p;
+            p.parameters = {{"A", 1.0, 0.1, 10.0, true, ParamScale::Log}, {"k", 0.5, 0.01, 10.0, true, ParamScale::Log}};
+            p.residualCount = t.size();
+            p.residuals = [t, y, &calls](const std::vector<double>& v, std::vector<double>& r) {
+                ++calls;
+                for (size_t i = 0; i < t.size(); ++i) r[i] = v[0] * std::exp(-v[1] * t[i]) - y[i];
+                return true;
+            };
+            p.multistarts = 1;
+            p.jacobian = kind;
+            const FitResult full = fitLeastSquares(p);
+            const int fullCalls = calls;
+            calls = 0;
+            p.uncertainty = false;
+            const FitResult bare = fitLeastSquares(p);
+            QVERIFY2(full.ok() && bare.ok(), (full.message + bare.message).c_str());
+            QCOMPARE(bare.values, full.values);
+            QCOMPARE(bare.cost, full.cost);
+            QVERIFY(std::abs(bare.rms - full.rms) <= 1e-12 * full.rms);
+            QVERIFY(std::isfinite(full.stderrOf("k")) && full.stderrOf("k") > 0);
+            QVERIFY(std::isnan(bare.stderrOf("A")) && std::isnan(bare.stderrOf("k")));
+            QVERIFY(bare.correlation.empty() && !bare.identifiable);
+            // The covariance Jacobian is 2p = 4 points around the optimum; the solver's memory of
+            // recent points serves those its last Jacobian already had (all of a central one, the
+            // forward points of a forward one), so it saves the backward points of a forward fit.
+            qInfo("%s: %d residual calls with the covariance, %d without", kind == JacobianKind::Forward ? "forward" : "central",
+                  fullCalls, calls);
+            QVERIFY(calls <= fullCalls);
+            if (kind == JacobianKind::Forward) QVERIFY(calls < fullCalls);
+        }
+    }
+
     // A frequency fit y = sin(ω t) has a narrow valley at the true ω and many local minima: the
     // local solver from ω = 3 stays in a wrong one; a scan over a log grid of ω (more points
     // than the evaluator's memory holds: that crashed once) starts it in the right valley.
@@ -402,6 +444,17 @@ private slots:
             return ps;
         };
         std::vector<FitParameter> fixedVc = params(false);
+        // startInside: κ = 24.4, s = −1.50 inside [1e-6, 1e9] × [−50, 50]; not with v_c fixed,
+        // nor where s leaves its range (a start install() would clamp: another start).
+        QVERIFY(CurveCoordinates::startInside(params(true)));
+        QVERIFY(!CurveCoordinates::startInside(fixedVc));
+        std::vector<FitParameter> steep = params(true);
+        steep[2].value = 60.0;  // s = 57.6
+        QVERIFY(!CurveCoordinates::startInside(steep));
+        steep[2].value = 0.87;
+        steep[1].value = 0.5;
+        steep[3].value = 0.009;  // s = 0.87 − 55.6
+        QVERIFY(!CurveCoordinates::startInside(steep));
         QVERIFY(!CurveCoordinates::install(fixedVc, {}).active());
         QCOMPARE(fixedVc[1].name, std::string("C1"));
         std::vector<FitParameter> scanned = params(true);

@@ -42,7 +42,7 @@ def test_identify_central_jacobian_equals_cli_report(cli, damper, tmp_path):
             "--report", tmp_path / "id.json")
     want = load_json(tmp_path / "id.json")
     assert got["ok"] is True and got["selection"]["jacobian"] == "central"
-    assert got["selection"]["coordinates"] == "law"  # prescribed: C1, eta themselves
+    assert got["selection"]["coordinates"] == "steady_state_curve"  # both set-ups (session 29)
     assert strip_keys(got) == strip_keys(want)
 
 
