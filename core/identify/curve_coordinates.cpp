@@ -44,6 +44,10 @@ bool CurveCoordinates::startInside(const std::vector<FitParameter>& params) {
         if (p.name == "vc") vc = &p;
     }
     if (!c1 || !eta || !vc || !(vc->value > 0)) return false;
+    for (const FitParameter* q : {c1, eta}) {  // by 1e-6 of the range: fit.cpp's "on a bound"
+        const double tol = 1e-6 * (q->upper - q->lower);
+        if (!(q->value > q->lower + tol && q->value < q->upper - tol)) return false;
+    }
     const double kappa = c1->value / (vc->value * vc->value), s = eta->value - c1->value / vc->value;
     return kappa > kCurvatureLower && kappa < kCurvatureUpper && s > kSlopeLower && s < kSlopeUpper;
 }

@@ -25,9 +25,10 @@ public:
     // physical bounds of C1 and η, and returns an active object. Else an inactive one.
     static CurveCoordinates install(std::vector<FitParameter>& params, const std::vector<ParameterScan>& scans);
     bool active() const { return active_; }
-    // Whether the start of `params` (C1, η, v_c free) maps strictly inside κ's and s's bounds,
-    // so that install() keeps the start where it is instead of clamping it (a warm start moved
-    // to a bound would be a different start). False when one of the three is not free.
+    // Whether a fit can start from `params` in these coordinates: C1, η and v_c free, C1 and η
+    // strictly inside their own bounds (on a bound the valley ends there, and a bound of C1 or
+    // η is not a bound of κ, s), and κ, s strictly inside theirs, so that install() keeps the
+    // start where it is instead of clamping it (a start moved to a bound is another start).
     static bool startInside(const std::vector<FitParameter>& params);
     // Whether `name` is one of the two coordinates install() writes (κ or s).
     static bool isCoordinate(const std::string& name) { return name == kCurvature || name == kSlope; }

@@ -66,16 +66,6 @@ std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const 
     return ps;
 }
 
-// C1 and η, where free, strictly inside their bounds (by 1e-6 of the range, fit.cpp's "on a bound").
-static bool insideLawBounds(const std::vector<FitParameter>& ps) {
-    for (const FitParameter& fp : ps) {
-        if (!fp.free || (fp.name != "C1" && fp.name != "eta")) continue;
-        const double tol = 1e-6 * (fp.upper - fp.lower);
-        if (!(fp.value > fp.lower + tol && fp.value < fp.upper - tol)) return false;
-    }
-    return true;
-}
-
 // One fit (fitSpec); `curveAllowed`: whether it may move in the curve coordinates, `usedCurve`
 // is set to whether it did.
 static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
@@ -107,7 +97,7 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
     // one-sided differences keep it from failing when it ends next to one) whose κ and s lie
     // inside their own bounds (a start clamped onto them would be another start).
     CurveCoordinates curve;
-    if (curveAllowed && !scanStiffness && insideLawBounds(prob.parameters) && CurveCoordinates::startInside(prob.parameters))
+    if (curveAllowed && !scanStiffness && CurveCoordinates::startInside(prob.parameters))
         curve = CurveCoordinates::install(prob.parameters, prob.scans);
     usedCurve = curve.active();
     prob.residualCount = residualCount(cx, idx);

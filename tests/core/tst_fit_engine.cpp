@@ -455,6 +455,9 @@ private slots:
         steep[1].value = 0.5;
         steep[3].value = 0.009;  // s = 0.87 − 55.6
         QVERIFY(!CurveCoordinates::startInside(steep));
+        std::vector<FitParameter> onBound = params(true);  // C1 on its upper bound: the valley ends there
+        onBound[1].value = onBound[1].upper;
+        QVERIFY(!CurveCoordinates::startInside(onBound));
         QVERIFY(!CurveCoordinates::install(fixedVc, {}).active());
         QCOMPARE(fixedVc[1].name, std::string("C1"));
         std::vector<FitParameter> scanned = params(true);
