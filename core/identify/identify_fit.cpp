@@ -92,10 +92,7 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
     // a long curved valley along which the solver crawls to its iteration cap. In both set-ups:
     // the valley is the steady-state curve's, whichever way the slip is imposed (the damper's
     // leave-one-run-out refits reached the cap 26 times in 48 in C1, η, v_c; 11 in κ, s, v_c).
-    // Only from a start inside C1's and η's bounds (on a bound the valley ends there, and a
-    // bound of C1 or η is not a bound of κ, s: the solver cannot slide along it; fit.hpp's
-    // one-sided differences keep it from failing when it ends next to one) whose κ and s lie
-    // inside their own bounds (a start clamped onto them would be another start).
+    // Only from a start CurveCoordinates::startInside accepts (its header says why).
     CurveCoordinates curve;
     if (curveAllowed && !scanStiffness && CurveCoordinates::startInside(prob.parameters))
         curve = CurveCoordinates::install(prob.parameters, prob.scans);
