@@ -11,7 +11,8 @@
 //     The identify loop (missing effects) reuses this engine with its own residuals.
 //  2. Dataset-level helpers: fit a friction law to a Dataset in either set-up (prescribed
 //     slip or dynamics with multiple shooting), per-run RMS / NRMSE, held-out validation.
-// All Ceres code lives in fit.cpp (one translation unit: it compiles slowly).
+// All Ceres code lives in fit.cpp; the standard errors at the optimum are in fit_uncertainty.cpp
+// (Eigen), the internals the two share in fit_internal.hpp.
 #pragma once
 
 #include <atomic>
