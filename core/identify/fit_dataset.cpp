@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
@@ -116,90 +117,75 @@ std::string holdOutLaterParts(std::vector<CleanRun>& fitRuns, std::vector<CleanR
     return {};
 }
 
-DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& valRuns, const DatasetFitSettings& st) {
-    DatasetFit out;
-    out.setup = st.setup;
-    out.model.law = st.law;
-    out.model.tieC1ToMu = st.tieC1ToMu;
-    if (fitRuns.empty()) {
-        out.message = "no runs to fit";
-        return out;
-    }
-    const ParamIssues pbad = st.predict.validate();
-    if (!pbad.empty()) {
-        out.message = pbad.front().message();
-        return out;
-    }
-    // Parameters: the free ones (that the law has) with default bounds, starts from the data
-    // and from `start`; everything in `start` that is not free is passed as fixed.
-    FitProblem prob;
-    std::vector<std::string> dropped;
+namespace {
+
+// The free parameters (those the law has) with their default bounds; `dropped`: the free names
+// the law does not have. False with `error` for an unknown name.
+bool freeParameters(const DatasetFitSettings& st, FitProblem& prob, std::vector<std::string>& dropped, std::string& error) {
     for (const std::string& name : st.free) {
         if (!lawHas(st.law, name)) { dropped.push_back(name); continue; }
         FitParameter fp;
         if (name == "zeta") fp = FitParameter{"zeta", 0.005, 1e-5, 1.0, true, ParamScale::Log};
         else if (!defaultParameter(name, st.setup, fp)) {
-            out.message = "unknown free parameter '" + name + "' (known: " + fitParamKeys() + " zeta)";
-            return out;
+            error = "unknown free parameter '" + name + "' (known: " + fitParamKeys() + " zeta)";
+            return false;
         }
         prob.parameters.push_back(fp);
     }
-    if (st.estimateStart) {
-        std::vector<double> mus;
-        for (const CleanRun& c : fitRuns) {
-            const double m = estimateMu(c);
-            if (m > 0) mus.push_back(m);
-        }
-        if (!mus.empty()) {
-            std::sort(mus.begin(), mus.end());
-            for (FitParameter& fp : prob.parameters)
-                if (fp.name == "mu" || fp.name == "C1") fp.value = std::clamp(mus[mus.size() / 2], fp.lower, fp.upper);
-        }
+    return true;
+}
+
+// μ and C1 start at the median over the runs of estimateMu.
+void startMuFromData(const std::vector<CleanRun>& fitRuns, FitProblem& prob) {
+    std::vector<double> mus;
+    for (const CleanRun& c : fitRuns) {
+        const double m = estimateMu(c);
+        if (m > 0) mus.push_back(m);
     }
-    std::string startNote;
-    if (st.estimateStart && st.equationErrorStart && st.setup == SetupKind::Dynamics && st.law == LawKind::RateState) {
-        // Starting values from the equation-error fit (identify.hpp), only for free parameters.
-        std::vector<IdentifyRun> idRuns;
-        bool usable = true;
-        std::string why;
-        for (const CleanRun& c : fitRuns) {
-            IdentifyRun ir;
-            if (!makeIdentifyRun(c, SetupKind::Dynamics, ir, &why)) {  // why names the file
-                usable = false;
-                break;
-            }
-            idRuns.push_back(std::move(ir));
-        }
-        auto isFree = [&](const char* n) {
-            return std::any_of(prob.parameters.begin(), prob.parameters.end(), [&](const FitParameter& fp) { return fp.name == n; });
-        };
-        if (usable) {
-            IdentifyOptions eo;
-            eo.maxEffects = 0;
-            eo.multistarts = 1;
-            eo.freeLaw.clear();
-            for (const char* n : {"mu", "C1", "eta", "vc"})
-                if (isFree(n)) eo.freeLaw.push_back(n);
-            eo.fitMass = isFree("m");
-            eo.cancel = st.cancel;
-            if (!eo.freeLaw.empty() || eo.fitMass) {
-                const IdentifyResult ee = identifyEffects(idRuns, eo);
-                if (ee.ok) {
-                    for (const ParamEstimate& pe : ee.baseline)
-                        for (FitParameter& fp : prob.parameters)
-                            if (fp.name == pe.name && std::isfinite(pe.value)) {
-                                fp.value = std::clamp(pe.value, fp.lower, fp.upper);
-                                startNote += (startNote.empty() ? "" : ", ") + pe.name + " " + std::to_string(fp.value);
-                            }
-                    startNote = "equation-error start: " + startNote;
-                } else {
-                    startNote = "equation-error start not used: " + ee.message;
-                }
-            }
-        } else {
-            startNote = "equation-error start not used: " + why;
-        }
+    if (mus.empty()) return;
+    std::sort(mus.begin(), mus.end());
+    for (FitParameter& fp : prob.parameters)
+        if (fp.name == "mu" || fp.name == "C1") fp.value = std::clamp(mus[mus.size() / 2], fp.lower, fp.upper);
+}
+
+// Starting values of the free sliding-law parameters and m* from the equation-error fit
+// (identify.hpp; DatasetFitSettings::equationErrorStart). Returns the note for the solver
+// summary: what was started where, or why the start was not used.
+std::string equationErrorStart(const std::vector<CleanRun>& fitRuns, const DatasetFitSettings& st, FitProblem& prob) {
+    std::vector<IdentifyRun> idRuns;
+    std::string why;
+    for (const CleanRun& c : fitRuns) {
+        IdentifyRun ir;
+        if (!makeIdentifyRun(c, SetupKind::Dynamics, ir, &why)) return "equation-error start not used: " + why;  // why names the file
+        idRuns.push_back(std::move(ir));
     }
+    auto isFree = [&](const char* n) {
+        return std::any_of(prob.parameters.begin(), prob.parameters.end(), [&](const FitParameter& fp) { return fp.name == n; });
+    };
+    IdentifyOptions eo;
+    eo.maxEffects = 0;
+    eo.multistarts = 1;
+    eo.freeLaw.clear();
+    for (const char* n : {"mu", "C1", "eta", "vc"})
+        if (isFree(n)) eo.freeLaw.push_back(n);
+    eo.fitMass = isFree("m");
+    eo.cancel = st.cancel;
+    if (eo.freeLaw.empty() && !eo.fitMass) return {};
+    const IdentifyResult ee = identifyEffects(idRuns, eo);
+    if (!ee.ok) return "equation-error start not used: " + ee.message;
+    std::string note;
+    for (const ParamEstimate& pe : ee.baseline)
+        for (FitParameter& fp : prob.parameters)
+            if (fp.name == pe.name && std::isfinite(pe.value)) {
+                fp.value = std::clamp(pe.value, fp.lower, fp.upper);
+                note += (note.empty() ? "" : ", ") + pe.name + " " + std::to_string(fp.value);
+            }
+    return "equation-error start: " + note;
+}
+
+// DatasetFitSettings::start: a free parameter starts there; any other (that the law has) is
+// passed as fixed, its bounds widened to hold the value.
+void applyStart(const DatasetFitSettings& st, FitProblem& prob) {
     for (const auto& [name, v] : st.start) {
         if (!lawHas(st.law, name)) continue;
         bool found = false;
@@ -215,54 +201,61 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
             prob.parameters.push_back(fp);
         }
     }
-    // Steady-state-curve coordinates (DatasetFitSettings::curveCoordinates): the entries of C1
-    // and η become κ = C1/v_c² and s = η − C1/v_c.
-    CurveCoordinates curve;
-    if (st.curveCoordinates && st.law == LawKind::RateState && st.setup == SetupKind::Dynamics)
-        curve = CurveCoordinates::install(prob.parameters, st.scans);
-    auto specFor = [&](const std::vector<double>& vals) {
-        ModelSpec m;
-        m.law = st.law;
-        m.tieC1ToMu = st.tieC1ToMu;
-        for (size_t i = 0; i < prob.parameters.size(); ++i) m.values[prob.parameters[i].name] = vals[i];
-        if (curve.active()) curve.toLaw(vals, m.values);
-        return m;
-    };
-    // Residual layout from one prediction at the start (indices do not depend on parameters).
+}
+
+using SpecFor = std::function<ModelSpec(const std::vector<double>&)>;
+
+// Where each run's residuals sit: its scored samples (from one prediction at the start; they
+// do not depend on the parameters), its normalisations and its block's offset.
+struct ResidualLayout {
+    std::vector<std::vector<size_t>> index;
+    std::vector<double> normF, normX;
+    std::vector<size_t> offset;
+    size_t count = 0;
+    size_t channels = 1;  // 2 in the dynamics set-up: force and displacement interleaved
+};
+
+// False with `error` when a run cannot be simulated at the start.
+bool layoutResiduals(const std::vector<CleanRun>& fitRuns, const DatasetFitSettings& st, const SpecFor& specFor,
+                     FitProblem& prob, ResidualLayout& L, std::string& error) {
     std::vector<double> startVals;
     for (const FitParameter& fp : prob.parameters) startVals.push_back(fp.value);
-    std::vector<std::vector<size_t>> layout;
-    std::vector<double> normF, normX;
-    size_t count = 0;
+    L.channels = st.setup == SetupKind::Dynamics ? 2 : 1;
     for (const CleanRun& c : fitRuns) {
         Prediction p = predictRun(c, st.setup, specFor(startVals), st.predict);
         if (!p.ok) {
-            out.message = "cannot simulate at the starting values: " + p.message;
-            return out;
+            error = "cannot simulate at the starting values: " + p.message;
+            return false;
         }
-        normF.push_back(std::max(rmsOf(c.run[Signal::Friction], p.index), 1e-12));
-        normX.push_back(st.setup == SetupKind::Dynamics ? std::max(rmsOf(c.run[Signal::SliderDisp], p.index), 1e-15) : 1.0);
-        count += p.index.size() * (st.setup == SetupKind::Dynamics ? 2 : 1);
+        L.normF.push_back(std::max(rmsOf(c.run[Signal::Friction], p.index), 1e-12));
+        L.normX.push_back(st.setup == SetupKind::Dynamics ? std::max(rmsOf(c.run[Signal::SliderDisp], p.index), 1e-15) : 1.0);
+        L.count += p.index.size() * L.channels;
         prob.profiledParameters += p.nuisanceParameters;
-        layout.push_back(p.index);
+        L.index.push_back(p.index);
     }
-    prob.residualCount = count;
+    prob.residualCount = L.count;
     // Offset of each run's block in the residual vector, so that runs can be filled in any order.
-    std::vector<size_t> offset(fitRuns.size(), 0);
-    for (size_t k = 1; k < fitRuns.size(); ++k)
-        offset[k] = offset[k - 1] + layout[k - 1].size() * (st.setup == SetupKind::Dynamics ? 2 : 1);
+    L.offset.assign(fitRuns.size(), 0);
+    for (size_t k = 1; k < fitRuns.size(); ++k) L.offset[k] = L.offset[k - 1] + L.index[k - 1].size() * L.channels;
+    return true;
+}
+
+// The problem's residual callbacks. Runs are independent, and so are the points of a numeric
+// Jacobian: every (point, run) pair is one task, handed out to the workers in turn (each writes
+// only its own block of its point's residual vector), so the numbers do not depend on the
+// thread count. Everything captured must outlive the fit.
+void installResiduals(FitProblem& prob, const std::vector<CleanRun>& fitRuns, const DatasetFitSettings& st,
+                      const ResidualLayout& L, const SpecFor& specFor, const CurveCoordinates& curve) {
     const size_t threads = st.threads > 0 ? static_cast<size_t>(st.threads)
                                           : std::max<size_t>(1, std::thread::hardware_concurrency());
-    // Runs are independent, and so are the points of a numeric Jacobian: every (point, run)
-    // pair is one task, handed out to `threads` workers in turn (each writes only its own block
-    // of its point's residual vector), so the numbers do not depend on the thread count.
-    prob.batchResiduals = [&, offset, threads](const std::vector<std::vector<double>>& points,
-                                               std::vector<std::vector<double>>& rs, std::vector<char>& okOut) {
+    prob.batchResiduals = [&fitRuns, &st, &L, &specFor, &curve, threads](const std::vector<std::vector<double>>& points,
+                                                                       std::vector<std::vector<double>>& rs,
+                                                                       std::vector<char>& okOut) {
         const size_t nRuns = fitRuns.size(), nTasks = points.size() * nRuns;
         std::vector<ModelSpec> specs;
         for (const std::vector<double>& v : points) specs.push_back(specFor(v));
         rs.resize(points.size());
-        for (std::vector<double>& r : rs) r.assign(count, 0.0);
+        for (std::vector<double>& r : rs) r.assign(L.count, 0.0);
         std::vector<char> ok(nTasks, 0);
         std::vector<char> inBounds(points.size(), 1);
         for (size_t pt = 0; pt < points.size(); ++pt)
@@ -276,14 +269,14 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
                 // predicting a whole run (the cancel latency of a dynamics fit).
                 if (st.cancel && st.cancel->load(std::memory_order_relaxed)) continue;
                 const Prediction p = predictRun(fitRuns[k], st.setup, specs[pt], st.predict);
-                if (!p.ok || p.index.size() != layout[k].size()) continue;
+                if (!p.ok || p.index.size() != L.index[k].size()) continue;
                 const std::vector<double>& F = fitRuns[k].run[Signal::Friction];
                 std::vector<double>& r = rs[pt];
-                size_t o = offset[k];
+                size_t o = L.offset[k];
                 for (size_t j = 0; j < p.index.size(); ++j) {
-                    r[o++] = (p.force_N[j] - F[p.index[j]]) / normF[k];
+                    r[o++] = (p.force_N[j] - F[p.index[j]]) / L.normF[k];
                     if (st.setup == SetupKind::Dynamics)
-                        r[o++] = (p.slider_m[j] - fitRuns[k].run[Signal::SliderDisp][p.index[j]]) / normX[k];
+                        r[o++] = (p.slider_m[j] - fitRuns[k].run[Signal::SliderDisp][p.index[j]]) / L.normX[k];
                 }
                 ok[t] = 1;
             }
@@ -302,14 +295,19 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
             okOut[pt] = std::all_of(ok.begin() + static_cast<long>(pt * nRuns), ok.begin() + static_cast<long>((pt + 1) * nRuns),
                                     [](char c) { return c != 0; });
     };
-    prob.residuals = [&](const std::vector<double>& vals, std::vector<double>& r) {
+    prob.residuals = [&prob, &L](const std::vector<double>& vals, std::vector<double>& r) {
         std::vector<std::vector<double>> rs(1);
         std::vector<char> ok;
         prob.batchResiduals({vals}, rs, ok);
         if (ok.empty() || !ok[0]) return false;
         r = std::move(rs[0]);
-        return r.size() == count;
+        return r.size() == L.count;
     };
+}
+
+// The scans before the first start: the given ones, plus ε_T's (dynamics set-up) and v_c's (in
+// the steady-state-curve coordinates) unless given (DatasetFitSettings::autoScan).
+void addScans(const DatasetFitSettings& st, const CurveCoordinates& curve, FitProblem& prob) {
     prob.scans = st.scans;
     const bool epsTFree = std::any_of(prob.parameters.begin(), prob.parameters.end(),
                                       [](const FitParameter& fp) { return fp.free && fp.name == "epsT"; });
@@ -319,6 +317,135 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
     const bool vcScanned = std::any_of(prob.scans.begin(), prob.scans.end(), [](const ParameterScan& sc) { return sc.name == "vc"; });
     if (st.autoScan && curve.active() && !vcScanned)
         prob.scans.push_back({"vc", logGrid(kVcScanLower, kVcScanUpper, kVcScanPoints)});
+}
+
+// Integrated autocorrelation time of the residuals r at the optimum (fit.hpp): pooled over the
+// runs and channels, each contiguous stretch of samples on its own, lags to 200 while ρ ≥ 0.05.
+double residualTauInt(const std::vector<double>& r, const ResidualLayout& L) {
+    const size_t nc = L.channels;
+    const size_t maxLag = 200;
+    std::vector<double> acc(maxLag + 1, 0.0);
+    for (size_t k = 0; k < L.index.size(); ++k) {
+        const std::vector<size_t>& ix = L.index[k];
+        size_t step = std::numeric_limits<size_t>::max();
+        for (size_t j = 1; j < ix.size(); ++j) step = std::min(step, ix[j] - ix[j - 1]);
+        for (size_t c = 0; c < nc; ++c) {
+            size_t b = 0;
+            for (size_t j = 1; j <= ix.size(); ++j) {
+                if (j < ix.size() && ix[j] - ix[j - 1] == step) continue;
+                // contiguous stretch [b, j)
+                for (size_t lag = 0; lag <= maxLag && b + lag < j; ++lag)
+                    for (size_t i = b; i + lag < j; ++i)
+                        acc[lag] += r[L.offset[k] + i * nc + c] * r[L.offset[k] + (i + lag) * nc + c];
+                b = j;
+            }
+        }
+    }
+    double tau = 1.0;
+    for (size_t lag = 1; lag <= maxLag && acc[0] > 0.0; ++lag) {
+        const double rho = acc[lag] / acc[0];
+        if (rho < 0.05) break;
+        tau += 2.0 * rho;
+    }
+    return tau;
+}
+
+// Leave each run out in turn and repeat the whole procedure on the rest (fit.hpp); the
+// jackknife standard errors, and the reported ones raised to them. `parts`: the progress
+// fractions (the main fit was the first).
+void jackknifeOverRuns(const std::vector<CleanRun>& fitRuns, const DatasetFitSettings& st, double parts, DatasetFit& out) {
+    DatasetFitSettings js = st;
+    js.jackknife = false;
+    const size_t K = fitRuns.size();
+    std::vector<std::vector<double>> est;
+    for (size_t k = 0; k < K; ++k) {
+        if (st.cancel && st.cancel->load()) break;
+        if (st.progress) js.progress = [&st, k, parts](double f) { st.progress((static_cast<double>(k + 1) + f) / parts); };
+        std::vector<CleanRun> sub;
+        for (size_t q = 0; q < K; ++q)
+            if (q != k) sub.push_back(fitRuns[q]);
+        const DatasetFit f = fitDataset(sub, {}, js);
+        if (!f.ok) continue;
+        std::vector<double> v;
+        for (const std::string& n : out.fit.names) v.push_back(f.fit.value(n));
+        est.push_back(std::move(v));
+    }
+    out.jackknifeFits = static_cast<int>(est.size());
+    if (est.size() != K) return;
+    for (size_t i = 0; i < out.fit.names.size(); ++i) {
+        if (!out.fit.free[i]) continue;
+        std::vector<double> column;
+        for (const auto& v : est) column.push_back(v[i]);
+        out.stderrsJackknife[i] = jackknifeStderr(column);
+        if (std::isfinite(out.fit.stderrs[i])) out.fit.stderrs[i] = std::max(out.fit.stderrs[i], out.stderrsJackknife[i]);
+    }
+}
+
+// Per-run scores of the fitted model and the pooled NRMSE of fit and validation runs: each
+// run's error over its own measured RMS, pooled as n_k NRMSE_k² over n_k in both set-ups, as
+// the fit's objective weighs it and identify's NRMSE counts it (so identify's "before" and
+// fit's NRMSE are one quantity). Raw Σe²/ΣF² weighted the runs by their force level instead
+// (damper: 0.271 against 0.266 for the same model).
+void scoreRuns(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& valRuns, const DatasetFitSettings& st,
+               DatasetFit& out) {
+    double sseF = 0, ssF = 0, sseV = 0, ssV = 0;
+    for (const CleanRun& c : fitRuns) {
+        RunScore s = scoreRun(c, st.setup, out.model, st.predict, "fit");
+        if (s.ok) { sseF += s.nrmse * s.nrmse * s.samples; ssF += s.samples; }
+        out.runs.push_back(std::move(s));
+    }
+    for (const CleanRun& c : valRuns) {
+        RunScore s = scoreRun(c, st.setup, out.model, st.predict, "validation");
+        if (s.ok) { sseV += s.nrmse * s.nrmse * s.samples; ssV += s.samples; }
+        out.runs.push_back(std::move(s));
+    }
+    out.fitNrmse = ssF > 0 ? std::sqrt(sseF / ssF) : std::numeric_limits<double>::quiet_NaN();
+    out.validationNrmse = ssV > 0 ? std::sqrt(sseV / ssV) : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& valRuns, const DatasetFitSettings& st) {
+    DatasetFit out;
+    out.setup = st.setup;
+    out.model.law = st.law;
+    out.model.tieC1ToMu = st.tieC1ToMu;
+    if (fitRuns.empty()) {
+        out.message = "no runs to fit";
+        return out;
+    }
+    const ParamIssues pbad = st.predict.validate();
+    if (!pbad.empty()) {
+        out.message = pbad.front().message();
+        return out;
+    }
+    // Parameters: the free ones (that the law has) with default bounds, starts from the data
+    // and from `start`; everything in `start` that is not free is passed as fixed.
+    FitProblem prob;
+    std::vector<std::string> dropped;
+    if (!freeParameters(st, prob, dropped, out.message)) return out;
+    if (st.estimateStart) startMuFromData(fitRuns, prob);
+    std::string startNote;
+    if (st.estimateStart && st.equationErrorStart && st.setup == SetupKind::Dynamics && st.law == LawKind::RateState)
+        startNote = equationErrorStart(fitRuns, st, prob);
+    applyStart(st, prob);
+    // Steady-state-curve coordinates (DatasetFitSettings::curveCoordinates): the entries of C1
+    // and η become κ = C1/v_c² and s = η − C1/v_c.
+    CurveCoordinates curve;
+    if (st.curveCoordinates && st.law == LawKind::RateState && st.setup == SetupKind::Dynamics)
+        curve = CurveCoordinates::install(prob.parameters, st.scans);
+    const SpecFor specFor = [&st, &prob, &curve](const std::vector<double>& vals) {
+        ModelSpec m;
+        m.law = st.law;
+        m.tieC1ToMu = st.tieC1ToMu;
+        for (size_t i = 0; i < prob.parameters.size(); ++i) m.values[prob.parameters[i].name] = vals[i];
+        if (curve.active()) curve.toLaw(vals, m.values);
+        return m;
+    };
+    ResidualLayout layout;
+    if (!layoutResiduals(fitRuns, st, specFor, prob, layout, out.message)) return out;
+    installResiduals(prob, fitRuns, st, layout, specFor, curve);
+    addScans(st, curve, prob);
     prob.multistarts = st.multistarts;
     prob.agreeingStarts = st.agreeingStarts;
     prob.loss = st.loss;
@@ -344,94 +471,20 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
     out.model = specFor(out.fit.values);
     const std::vector<double> internalOptimum = out.fit.values;  // what prob.residuals takes
     if (curve.active()) curve.restore(out.fit);
-    // Integrated autocorrelation time of the residuals at the optimum (see fit.hpp).
-    {
-        std::vector<double> r(count, 0.0);
-        if (prob.residuals(internalOptimum, r)) {
-            const size_t nc = st.setup == SetupKind::Dynamics ? 2 : 1;
-            const size_t maxLag = 200;
-            std::vector<double> acc(maxLag + 1, 0.0);
-            for (size_t k = 0; k < fitRuns.size(); ++k) {
-                const std::vector<size_t>& ix = layout[k];
-                size_t step = std::numeric_limits<size_t>::max();
-                for (size_t j = 1; j < ix.size(); ++j) step = std::min(step, ix[j] - ix[j - 1]);
-                for (size_t c = 0; c < nc; ++c) {
-                    size_t b = 0;
-                    for (size_t j = 1; j <= ix.size(); ++j) {
-                        if (j < ix.size() && ix[j] - ix[j - 1] == step) continue;
-                        // contiguous stretch [b, j)
-                        for (size_t lag = 0; lag <= maxLag && b + lag < j; ++lag)
-                            for (size_t i = b; i + lag < j; ++i)
-                                acc[lag] += r[offset[k] + i * nc + c] * r[offset[k] + (i + lag) * nc + c];
-                        b = j;
-                    }
-                }
-            }
-            double tau = 1.0;
-            for (size_t lag = 1; lag <= maxLag && acc[0] > 0.0; ++lag) {
-                const double rho = acc[lag] / acc[0];
-                if (rho < 0.05) break;
-                tau += 2.0 * rho;
-            }
-            out.tauInt = tau;
-        }
-        out.stderrsIid = out.fit.stderrs;
-        const double inflate = std::sqrt(std::max(1.0, out.tauInt));
-        for (double& se : out.fit.stderrs) se *= inflate;
-    }
+    // The Jacobian's standard errors inflated by √τ_int of the residuals at the optimum (fit.hpp).
+    std::vector<double> r(layout.count, 0.0);
+    if (prob.residuals(internalOptimum, r)) out.tauInt = residualTauInt(r, layout);
+    out.stderrsIid = out.fit.stderrs;
+    const double inflate = std::sqrt(std::max(1.0, out.tauInt));
+    for (double& se : out.fit.stderrs) se *= inflate;
     out.stderrsJacobian = out.fit.stderrs;
     out.stderrsJackknife.assign(out.fit.names.size(), std::numeric_limits<double>::quiet_NaN());
-    if (st.jackknife && fitRuns.size() >= 3) {
-        // Leave each run out in turn and repeat the whole procedure on the rest (see fit.hpp).
-        DatasetFitSettings js = st;
-        js.jackknife = false;
-        const size_t K = fitRuns.size();
-        std::vector<std::vector<double>> est;
-        for (size_t k = 0; k < K; ++k) {
-            if (st.cancel && st.cancel->load()) break;
-            if (st.progress) js.progress = [&st, k, parts](double f) { st.progress((static_cast<double>(k + 1) + f) / parts); };
-            std::vector<CleanRun> sub;
-            for (size_t q = 0; q < K; ++q)
-                if (q != k) sub.push_back(fitRuns[q]);
-            const DatasetFit f = fitDataset(sub, {}, js);
-            if (!f.ok) continue;
-            std::vector<double> v;
-            for (const std::string& n : out.fit.names) v.push_back(f.fit.value(n));
-            est.push_back(std::move(v));
-        }
-        out.jackknifeFits = static_cast<int>(est.size());
-        if (est.size() == K) {
-            for (size_t i = 0; i < out.fit.names.size(); ++i) {
-                if (!out.fit.free[i]) continue;
-                std::vector<double> column;
-                for (const auto& v : est) column.push_back(v[i]);
-                out.stderrsJackknife[i] = jackknifeStderr(column);
-                if (std::isfinite(out.fit.stderrs[i]))
-                    out.fit.stderrs[i] = std::max(out.fit.stderrs[i], out.stderrsJackknife[i]);
-            }
-        }
-    }
+    if (st.jackknife && fitRuns.size() >= 3) jackknifeOverRuns(fitRuns, st, parts, out);
     if (curve.active() && out.jackknifeFits == 0)
         out.stderrWarning = "standard errors from the Jacobian only: with C1, eta and vc free the dynamics cost has several "
                             "minima along the steady-state curve's valley, and these errors are too small there (on the "
                             "synthetic D05 5-15x for C1, eta, vc, Dc and mu); use the jackknife over runs";
-    // Pooled as n_k NRMSE_k² over n_k in both set-ups: each run's error over its own measured
-    // RMS, as the fit's objective weighs it and identify's NRMSE counts it (so identify's
-    // "before" and fit's NRMSE are one quantity). Raw Σe²/ΣF² weighted the runs by their force
-    // level instead (damper: 0.271 against 0.266 for the same model).
-    double sseF = 0, ssF = 0, sseV = 0, ssV = 0;
-    for (const CleanRun& c : fitRuns) {
-        RunScore s = scoreRun(c, st.setup, out.model, st.predict, "fit");
-        if (s.ok) { sseF += s.nrmse * s.nrmse * s.samples; ssF += s.samples; }
-        out.runs.push_back(std::move(s));
-    }
-    for (const CleanRun& c : valRuns) {
-        RunScore s = scoreRun(c, st.setup, out.model, st.predict, "validation");
-        if (s.ok) { sseV += s.nrmse * s.nrmse * s.samples; ssV += s.samples; }
-        out.runs.push_back(std::move(s));
-    }
-    out.fitNrmse = ssF > 0 ? std::sqrt(sseF / ssF) : std::numeric_limits<double>::quiet_NaN();
-    out.validationNrmse = ssV > 0 ? std::sqrt(sseV / ssV) : std::numeric_limits<double>::quiet_NaN();
+    scoreRuns(fitRuns, valRuns, st, out);
     out.ok = true;
     return out;
 }
