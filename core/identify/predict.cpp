@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "../dsp/iir.hpp"
 #include "../integrate/dynamics.hpp"
@@ -130,6 +132,166 @@ std::optional<StageMotion> smoothStage(const std::vector<double>& t, const std::
     return StageMotion::tabulated(std::move(ts), std::move(us), issues);
 }
 
+// Segment starts of a run (from the data only, so the residual layout does not depend on the
+// parameters). First sample a segment may start at: the end of the previous one (its start
+// sample is not scored, so no residual sample is shared; with slipStartFraction = 0 every
+// segment starts at its nominal time, as spacing >= segment length). With slipStartFraction > 0
+// a segment starts at the first sample within its spacing that slips faster than that fraction
+// of the run's peak |V|.
+std::vector<size_t> segmentStarts(const CleanRun& run, const PredictSettings& s, size_t segLen, size_t spacing) {
+    const io::Run& r = run.run;
+    double threshold = 0.0;  // |V| that counts as slipping for a segment start
+    if (s.slipStartFraction > 0.0 && r.has(Signal::RelVel)) {
+        double vmax = 0.0;
+        for (size_t i = run.begin; i < run.end; ++i) vmax = std::max(vmax, std::abs(r[Signal::RelVel][i]));
+        threshold = s.slipStartFraction * vmax;
+    }
+    std::vector<size_t> starts;
+    size_t next = run.begin;
+    for (size_t n0 = run.begin; n0 + segLen < run.end; n0 += spacing) {
+        size_t s0 = std::max(n0, next);
+        if (threshold > 0.0) {
+            size_t q = s0;
+            while (q < n0 + spacing && q + segLen < run.end && std::abs(r[Signal::RelVel][q]) < threshold) ++q;
+            if (q < n0 + spacing && q + segLen < run.end) s0 = q;
+        }
+        if (s0 + segLen >= run.end) break;
+        next = s0 + segLen;
+        starts.push_back(s0);
+    }
+    return starts;
+}
+
+// One segment of a run simulated from an initial slider state: eF, eX = prediction − unfiltered
+// measurement on samples s0 … s0 + segLen, through the run's filter (zero-phase, zero-extended
+// by its impulse response) when the prediction is filtered. The stage motion is `m.stage`.
+struct SegmentSimulator {
+    DynamicsModel& m;
+    const CleanRun& run;
+    const FrictionLaw& law;
+    const std::vector<double>& Fm;
+    const std::vector<double>& Fu;  // unfiltered measurement (the filter's input) when kept, else Fm
+    const std::vector<double>& Xu;
+    size_t segLen;
+    long sub;  // steps per sample
+    bool filtered;
+    size_t margin;
+    std::string failure;
+
+    bool operator()(size_t s0, double x0, double v0, std::vector<double>& eF, std::vector<double>& eX) {
+        const io::Run& r = run.run;
+        const std::vector<double>& t = r[Signal::Time];
+        DynState st;
+        st.t = t[s0];
+        st.x = x0;
+        st.v = v0;
+        st.u = m.stage.displacement(st.t);
+        st.law.force_N = Fm[s0];
+        // α in steady sliding at the measured slip rate: the law's state is not measured, and
+        // it relaxes within a slip of D_c. Right when the segment starts in slip
+        // (slipStartFraction > 0); while stuck the true α is frozen at its end-of-slip value.
+        const double V = r.has(Signal::RelVel) ? r[Signal::RelVel][s0] : 0.0;
+        st.law.alpha = steadyStateAlpha(law, V);
+        st.a = (st.law.force_N - m.rig.stiffness_N_per_m * st.x - m.rig.damping_Ns_per_m * st.v) / m.rig.mass_kg;
+        eF.assign(segLen + 1, 0.0);
+        eX.assign(segLen + 1, 0.0);
+        eF[0] = st.law.force_N - Fu[s0];
+        eX[0] = st.x - Xu[s0];
+        for (size_t j = 1; j <= segLen; ++j) {
+            const StepReport rep = advanceQuiet(m, st, sub);
+            if (rep.status != RunStatus::Ok) {
+                failure = r.file + ": " + rep.message;
+                return false;
+            }
+            eF[j] = st.law.force_N - Fu[s0 + j];
+            eX[j] = st.x - Xu[s0 + j];
+        }
+        if (filtered) {
+            eF = dsp::filtfiltZeroExtended(run.filter, eF, margin);
+            eX = dsp::filtfiltZeroExtended(run.filter, eX, margin);
+        }
+        return true;
+    }
+};
+
+// Weights of the initial-state projection: each channel divided by the RMS of its measurement
+// over every scored sample of the run (the weighting of fitDataset), and the RMS of ẋ (the
+// scale of v0's difference step).
+struct StateWeights {
+    double wF = 1.0, wX = 1.0, sV = 0.0;
+};
+StateWeights initialStateWeights(const CleanRun& run, const std::vector<size_t>& starts, size_t segLen, size_t rstride) {
+    const io::Run& r = run.run;
+    const std::vector<double>& Fm = r[Signal::Friction];
+    const std::vector<double>& Xm = r[Signal::SliderDisp];
+    const std::vector<double>& Vm = r[Signal::SliderVel];
+    double sf = 0, sx = 0, sv = 0;
+    size_t n = 0;
+    for (size_t s0 : starts)
+        for (size_t j = rstride; j <= segLen; j += rstride) {
+            sf += Fm[s0 + j] * Fm[s0 + j];
+            sx += Xm[s0 + j] * Xm[s0 + j];
+            sv += Vm[s0 + j] * Vm[s0 + j];
+            ++n;
+        }
+    const double dn = static_cast<double>(std::max<size_t>(n, 1));
+    StateWeights w;
+    w.wF = 1.0 / std::max(std::sqrt(sf / dn), 1e-12);
+    w.wX = 1.0 / std::max(std::sqrt(sx / dn), 1e-15);
+    w.sV = std::sqrt(sv / dn);
+    return w;
+}
+
+// The segment's initial state (x0, v0) as a nuisance parameter (variable projection, see
+// PredictSettings): Gauss–Newton on (x0, v0) from the measured state, with forward-difference
+// sensitivities in coordinates scaled by the run's RMS of x and ẋ. Every step is taken (no
+// accept/reject test: the profiled residual must be a smooth function of the law parameters
+// for the outer numeric Jacobian), and the last one is not simulated again: dF, dX (on entry the
+// residual from the measured state) become its linear model e + J δ, i.e. the residual
+// projected off the two initial-state directions. A tiny Levenberg term keeps a direction the
+// segment hardly sees (ẋ0 of a segment that stays stuck) finite. False (sim.failure) when a
+// simulation fails.
+bool projectInitialState(SegmentSimulator& sim, size_t s0, double x0, double v0, const StateWeights& w, int iterations,
+                         size_t rstride, std::vector<double>& dF, std::vector<double>& dX) {
+    const size_t segLen = sim.segLen;
+    std::vector<double> pF, pX, qF, qX;  // displaced and trial trajectories
+    const double sx = 1.0 / w.wX, sv = std::max(w.sV, 1e-12);
+    constexpr double kRel = 1e-3;  // difference step, in units of sx, sv
+    for (int it = 0; it < iterations; ++it) {
+        if (!sim(s0, x0 + kRel * sx, v0, pF, pX) || !sim(s0, x0, v0 + kRel * sv, qF, qX)) return false;
+        double A11 = 0, A12 = 0, A22 = 0, g1 = 0, g2 = 0;
+        for (size_t j = rstride; j <= segLen; j += rstride) {
+            const double e[2] = {dF[j] * w.wF, dX[j] * w.wX};
+            const double jx[2] = {(pF[j] - dF[j]) * w.wF / kRel, (pX[j] - dX[j]) * w.wX / kRel};  // de/d(δx/sx)
+            const double jv[2] = {(qF[j] - dF[j]) * w.wF / kRel, (qX[j] - dX[j]) * w.wX / kRel};  // de/d(δv/sv)
+            for (int c = 0; c < 2; ++c) {
+                A11 += jx[c] * jx[c];
+                A12 += jx[c] * jv[c];
+                A22 += jv[c] * jv[c];
+                g1 += jx[c] * e[c];
+                g2 += jv[c] * e[c];
+            }
+        }
+        const double damp = 1e-6 * (A11 + A22) + 1e-300;
+        A11 += damp;
+        A22 += damp;
+        const double det = A11 * A22 - A12 * A12;
+        const double da = det > 0 ? -(A22 * g1 - A12 * g2) / det : 0.0;
+        const double db = det > 0 ? -(A11 * g2 - A12 * g1) / det : 0.0;
+        if (it + 1 == iterations) {
+            for (size_t j = rstride; j <= segLen; j += rstride) {
+                dF[j] += ((pF[j] - dF[j]) * da + (qF[j] - dF[j]) * db) / kRel;
+                dX[j] += ((pX[j] - dX[j]) * da + (qX[j] - dX[j]) * db) / kRel;
+            }
+            break;
+        }
+        x0 += da * sx;
+        v0 += db * sv;
+        if (!sim(s0, x0, v0, dF, dX)) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const FrictionLaw& law, const PredictSettings& s) {
@@ -157,89 +319,14 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
     // Unfiltered measurement (the filter's input) when kept, else the cleaned one.
     const std::vector<double>& Fu = filtered && run.unfilteredForce_N.size() == Fm.size() ? run.unfilteredForce_N : Fm;
     const std::vector<double>& Xu = filtered && run.unfilteredSlider_m.size() == Xm.size() ? run.unfilteredSlider_m : Xm;
-    double threshold = 0.0;  // |V| that counts as slipping for a segment start
-    if (s.slipStartFraction > 0.0 && r.has(Signal::RelVel)) {
-        double vmax = 0.0;
-        for (size_t i = run.begin; i < run.end; ++i) vmax = std::max(vmax, std::abs(r[Signal::RelVel][i]));
-        threshold = s.slipStartFraction * vmax;
-    }
-    // Segment starts (from the data only, so the residual layout does not depend on the
-    // parameters). First sample a segment may start at: the end of the previous one (its start
-    // sample is not scored, so no residual sample is shared; with slipStartFraction = 0 every
-    // segment starts at its nominal time, as spacing >= segment length).
-    std::vector<size_t> starts;
-    size_t next = run.begin;
-    for (size_t n0 = run.begin; n0 + segLen < run.end; n0 += spacing) {
-        size_t s0 = std::max(n0, next);
-        if (threshold > 0.0) {
-            size_t q = s0;
-            while (q < n0 + spacing && q + segLen < run.end && std::abs(r[Signal::RelVel][q]) < threshold) ++q;
-            if (q < n0 + spacing && q + segLen < run.end) s0 = q;
-        }
-        if (s0 + segLen >= run.end) break;
-        next = s0 + segLen;
-        starts.push_back(s0);
-    }
+    const std::vector<size_t> starts = segmentStarts(run, s, segLen, spacing);
     if (starts.empty()) {
         pr.message = r.file + ": fit window shorter than one segment";
         return pr;
     }
-    // Simulate one segment from the initial slider state (x0, v0) at sample s0; dF, dX =
-    // prediction − unfiltered measurement on samples s0..s0+segLen, through the run's filter.
+    SegmentSimulator sim{m, run, law, Fm, Fu, Xu, segLen, sub, filtered, margin, {}};
+    const StateWeights w = s.fitInitialState ? initialStateWeights(run, starts, segLen, rstride) : StateWeights{};
     std::vector<double> dF(segLen + 1), dX(segLen + 1);
-    std::string failure;
-    auto simulateSegment = [&](size_t s0, double x0, double v0, std::vector<double>& eF, std::vector<double>& eX) {
-        DynState st;
-        st.t = t[s0];
-        st.x = x0;
-        st.v = v0;
-        st.u = m.stage.displacement(st.t);
-        st.law.force_N = Fm[s0];
-        // α in steady sliding at the measured slip rate: the law's state is not measured, and
-        // it relaxes within a slip of D_c. Right when the segment starts in slip
-        // (slipStartFraction > 0); while stuck the true α is frozen at its end-of-slip value.
-        const double V = r.has(Signal::RelVel) ? r[Signal::RelVel][s0] : 0.0;
-        st.law.alpha = steadyStateAlpha(law, V);
-        st.a = (st.law.force_N - rig.stiffness_N_per_m * st.x - rig.damping_Ns_per_m * st.v) / rig.mass_kg;
-        eF.assign(segLen + 1, 0.0);
-        eX.assign(segLen + 1, 0.0);
-        eF[0] = st.law.force_N - Fu[s0];
-        eX[0] = st.x - Xu[s0];
-        for (size_t j = 1; j <= segLen; ++j) {
-            const StepReport rep = advanceQuiet(m, st, sub);
-            if (rep.status != RunStatus::Ok) {
-                failure = r.file + ": " + rep.message;
-                return false;
-            }
-            eF[j] = st.law.force_N - Fu[s0 + j];
-            eX[j] = st.x - Xu[s0 + j];
-        }
-        if (filtered) {
-            eF = dsp::filtfiltZeroExtended(run.filter, eF, margin);
-            eX = dsp::filtfiltZeroExtended(run.filter, eX, margin);
-        }
-        return true;
-    };
-    // Initial state as a nuisance parameter (variable projection, see PredictSettings): the
-    // segment's scored residuals, each channel divided by the RMS of its measurement over
-    // every scored sample of the run (the weighting of fitDataset).
-    double wF = 1.0, wX = 1.0, sV = 0.0;
-    if (s.fitInitialState) {
-        double sf = 0, sx = 0, sv = 0;
-        size_t n = 0;
-        for (size_t s0 : starts)
-            for (size_t j = rstride; j <= segLen; j += rstride) {
-                sf += Fm[s0 + j] * Fm[s0 + j];
-                sx += Xm[s0 + j] * Xm[s0 + j];
-                sv += Vm[s0 + j] * Vm[s0 + j];
-                ++n;
-            }
-        const double dn = static_cast<double>(std::max<size_t>(n, 1));
-        wF = 1.0 / std::max(std::sqrt(sf / dn), 1e-12);
-        wX = 1.0 / std::max(std::sqrt(sx / dn), 1e-15);
-        sV = std::sqrt(sv / dn);
-    }
-    std::vector<double> pF, pX, qF, qX;  // displaced and trial trajectories
     for (size_t s0 : starts) {
         ParamIssues stageIssues;
         std::optional<StageMotion> stage = smoothStage(t, U, s0, segLen, sub, &stageIssues);
@@ -248,59 +335,14 @@ Prediction predictDynamics(const CleanRun& run, const RigParams& rig, const Fric
             return pr;
         }
         m.stage = std::move(*stage);
-        double x0 = Xm[s0], v0 = Vm[s0];
-        if (!simulateSegment(s0, x0, v0, dF, dX)) {
-            pr.message = failure;
+        if (!sim(s0, Xm[s0], Vm[s0], dF, dX)) {
+            pr.message = sim.failure;
             return pr;
         }
         if (s.fitInitialState) {
-            // Gauss–Newton on (x0, v0) from the measured state, with forward-difference
-            // sensitivities in coordinates scaled by the run's RMS of x and ẋ. Every step is
-            // taken (no accept/reject test: the profiled residual must be a smooth function of
-            // the law parameters for the outer numeric Jacobian), and the last one is not
-            // simulated again: the returned residual is its linear model e + J δ, i.e. the
-            // residual projected off the two initial-state directions (variable projection).
-            // A tiny Levenberg term keeps a direction the segment hardly sees (ẋ0 of a segment
-            // that stays stuck) finite.
-            const double sx = 1.0 / wX, sv = std::max(sV, 1e-12);
-            constexpr double kRel = 1e-3;  // difference step, in units of sx, sv
-            for (int it = 0; it < s.initialStateIterations; ++it) {
-                if (!simulateSegment(s0, x0 + kRel * sx, v0, pF, pX) || !simulateSegment(s0, x0, v0 + kRel * sv, qF, qX)) {
-                    pr.message = failure;
-                    return pr;
-                }
-                double A11 = 0, A12 = 0, A22 = 0, g1 = 0, g2 = 0;
-                for (size_t j = rstride; j <= segLen; j += rstride) {
-                    const double e[2] = {dF[j] * wF, dX[j] * wX};
-                    const double jx[2] = {(pF[j] - dF[j]) * wF / kRel, (pX[j] - dX[j]) * wX / kRel};  // de/d(δx/sx)
-                    const double jv[2] = {(qF[j] - dF[j]) * wF / kRel, (qX[j] - dX[j]) * wX / kRel};  // de/d(δv/sv)
-                    for (int c = 0; c < 2; ++c) {
-                        A11 += jx[c] * jx[c];
-                        A12 += jx[c] * jv[c];
-                        A22 += jv[c] * jv[c];
-                        g1 += jx[c] * e[c];
-                        g2 += jv[c] * e[c];
-                    }
-                }
-                const double damp = 1e-6 * (A11 + A22) + 1e-300;
-                A11 += damp;
-                A22 += damp;
-                const double det = A11 * A22 - A12 * A12;
-                const double da = det > 0 ? -(A22 * g1 - A12 * g2) / det : 0.0;
-                const double db = det > 0 ? -(A11 * g2 - A12 * g1) / det : 0.0;
-                if (it + 1 == s.initialStateIterations) {
-                    for (size_t j = rstride; j <= segLen; j += rstride) {
-                        dF[j] += ((pF[j] - dF[j]) * da + (qF[j] - dF[j]) * db) / kRel;
-                        dX[j] += ((pX[j] - dX[j]) * da + (qX[j] - dX[j]) * db) / kRel;
-                    }
-                    break;
-                }
-                x0 += da * sx;
-                v0 += db * sv;
-                if (!simulateSegment(s0, x0, v0, dF, dX)) {
-                    pr.message = failure;
-                    return pr;
-                }
+            if (!projectInitialState(sim, s0, Xm[s0], Vm[s0], w, s.initialStateIterations, rstride, dF, dX)) {
+                pr.message = sim.failure;
+                return pr;
             }
             pr.nuisanceParameters += 2;
         }
