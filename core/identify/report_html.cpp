@@ -122,8 +122,10 @@ static void writeSelfTest(std::ostream& o, const SelfTestResult& st) {
     o << "</table>\n";
 }
 
-std::string renderHtmlReport(const IdentifyResult& r) {
-    std::ostringstream o;
+namespace {
+
+// Page head, the verdict, the error before and after, the baseline note.
+void writeSummary(std::ostream& o, const IdentifyResult& r) {
     o << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>StickSlip Lab: identify report</title>\n"
          "<style>body{font-family:sans-serif;max-width:1000px;margin:1em auto;color:#222}"
          "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}"
@@ -148,6 +150,10 @@ std::string renderHtmlReport(const IdentifyResult& r) {
       << "</td></tr><tr><td class=l>after</td><td>" << fmt(r.after.fitNrmse) << "</td><td>" << fmt(r.after.validationNrmse)
       << "</td></tr></table>\n";
     if (!r.baselineNote.empty()) o << "<p>Baseline: " << htmlEscape(r.baselineNote) << ".</p>\n";
+}
+
+// Fit and held-out error of every run before and after (the table is closed by the next section).
+void writePerRun(std::ostream& o, const IdentifyResult& r) {
     o << "<h3>Per run</h3><table><tr><th>run</th><th>role</th><th>NRMSE before</th><th>held-out before</th>"
          "<th>NRMSE after</th><th>held-out after</th></tr>\n";
     for (size_t i = 0; i < r.before.runs.size(); ++i) {
@@ -157,6 +163,10 @@ std::string renderHtmlReport(const IdentifyResult& r) {
           << fmt(b.heldOutNrmse) << "</td><td>" << (a ? fmt(a->nrmse) : "") << "</td><td>" << (a ? fmt(a->heldOutNrmse) : "")
           << "</td></tr>\n";
     }
+}
+
+// The effects added, with their parameters and the residual correlations that pointed to them.
+void writeEffectsAdded(std::ostream& o, const IdentifyResult& r) {
     o << "</table>\n<h3>Effects added</h3><table><tr><th>effect</th><th>parameter</th><th>value</th><th>std. error</th>"
          "<th>&Delta;BIC</th><th>pointed to by (r before)</th></tr>\n";
     for (const AddedEffect& e : r.effectsAdded) {
@@ -167,13 +177,18 @@ std::string renderHtmlReport(const IdentifyResult& r) {
               << "</td><td>" << fmt(p.stderr_) << "</td><td>" << fmt(e.deltaBic, "%.1f") << "</td><td class=l>" << htmlEscape(ptr)
               << "</td></tr>\n";
     }
+}
+
+// Every candidate tried, with the numbers of each test of the selection rule and its verdict.
+void writeCandidates(std::ostream& o, const IdentifyResult& r) {
     o << "</table>\n<h3>Candidates</h3><p>Added only if &Delta;BIC &lt; &minus;" << fmt(r.bicMargin, "%g")
       << ", the gain in the sum of squares exceeds the " << fmt(100.0 * (1.0 - r.nullAlpha), "%g") << " % quantile of what "
       << r.nullReplicas << " noise replicas of these runs give (AR(1) noise of the residual's level and colour), the held-out error is lower "
-         "consistently over the held-out runs (paired t-test, one-sided p &lt; " << fmt(r.heldOutAlpha, "%g")
-      << ") and the size parameter is more than t<sub>K&minus;1</sub> jackknife standard errors from where the effect vanishes "
+         "consistently over the held-out runs (one-sided p &lt; " << fmt(r.heldOutAlpha, "%g")
+      << " on the runs' log MSE ratios: the exact sign-flip test when 2<sup>&minus;K</sup> &lt; " << fmt(r.heldOutAlpha, "%g")
+      << " for K held-out runs, else the paired t-test) and the size parameter is more than t<sub>K&minus;1</sub> jackknife standard errors from where the effect vanishes "
          "(level " << fmt(r.identifiabilityAlpha, "%g") << ").</p><table><tr><th>effect</th><th>round</th><th>&Delta;BIC</th>"
-         "<th>fit NRMSE</th><th>gain / noise quantile</th><th>held-out NRMSE</th><th>paired p</th><th>|size &minus; vanishing value| / s.e.</th><th>t crit.</th>"
+         "<th>fit NRMSE</th><th>gain / noise quantile</th><th>held-out NRMSE</th><th>held-out p</th><th>|size &minus; vanishing value| / s.e.</th><th>t crit.</th>"
          "<th>verdict</th></tr>\n";
     for (const CandidateScore& c : r.candidates) {
         const bool ho = c.heldOutUnits > 0, sz = !c.sizeParam.empty() && c.sizeStderr > 0;
@@ -187,13 +202,20 @@ std::string renderHtmlReport(const IdentifyResult& r) {
           << htmlEscape(verdictOf(c)) << "</td></tr>\n";
     }
     o << "</table>\n";
-    writeSelfTest(o, r.selfTest);
+}
+
+// Baseline and final parameters.
+void writeParameters(std::ostream& o, const IdentifyResult& r) {
     o << "<h3>Parameters</h3><table><tr><th>parameter</th><th>baseline</th><th>&plusmn;</th></tr>\n";
     for (const ParamEstimate& p : r.baseline)
         o << "<tr><td class=l>" << htmlEscape(p.name) << "</td><td>" << fmt(p.value) << "</td><td>" << fmt(p.stderr_) << "</td></tr>\n";
     o << "</table><table><tr><th>parameter</th><th>final</th><th>&plusmn;</th></tr>\n";
     for (const ParamEstimate& p : r.final)
         o << "<tr><td class=l>" << htmlEscape(p.name) << "</td><td>" << fmt(p.value) << "</td><td>" << fmt(p.stderr_) << "</td></tr>\n";
+}
+
+// Residual correlations with the candidate signals, whiteness, autocorrelation and spectrum.
+void writeDiagnostics(std::ostream& o, const IdentifyResult& r) {
     o << "</table>\n<h2>Residual diagnostics</h2><table><tr><th>signal</th><th>r before</th><th>r after</th></tr>\n";
     for (size_t i = 0; i < r.diagnosticsBefore.correlations.size(); ++i)
         o << "<tr><td class=l>" << r.diagnosticsBefore.correlations[i].signal << "</td><td>"
@@ -227,6 +249,10 @@ std::string renderHtmlReport(const IdentifyResult& r) {
                                  " Hz multiples",
                          "frequency [Hz]", "log10 power");
     }
+}
+
+// Per run: measured and predicted force, residual and force-velocity loops (SVG).
+void writeRunTraces(std::ostream& o, const IdentifyResult& r) {
     o << "<h2>Runs</h2>\n";
     for (const RunTrace& t : r.traces) {
         // At most ~3 forcing periods or 1500 samples for readability.
@@ -251,6 +277,20 @@ std::string renderHtmlReport(const IdentifyResult& r) {
         o << svgLinePlot({rb, ra}, "Residual", "t [s]", "F measured - predicted [N]", 640, 220);
         o << svgLinePlot({lm, lb, la}, "Loops: force vs slip velocity", "V [m/s]", "F [N]", 420, 320);
     }
+}
+
+}  // namespace
+
+std::string renderHtmlReport(const IdentifyResult& r) {
+    std::ostringstream o;
+    writeSummary(o, r);
+    writePerRun(o, r);
+    writeEffectsAdded(o, r);
+    writeCandidates(o, r);
+    writeSelfTest(o, r.selfTest);
+    writeParameters(o, r);
+    writeDiagnostics(o, r);
+    writeRunTraces(o, r);
     o << "</body></html>\n";
     return o.str();
 }
