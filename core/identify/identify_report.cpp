@@ -57,88 +57,87 @@ nlohmann::json toJson(const Diagnostics& d, bool withSeries) {
     return j;
 }
 
-nlohmann::json toJson(const IdentifyResult& r) {
-    nlohmann::json j;
-    j["ok"] = r.ok;
-    if (!r.message.empty()) j["message"] = r.message;
-    j["setup"] = r.setup;
-    j["baseline"] = {{"model", "rate-state"}, {"parameters", toJson(r.baseline)}};
-    if (!r.baselineNote.empty()) j["baseline"]["note"] = r.baselineNote;
+namespace {
+
+// The baseline's parameters, note and bound verdicts.
+nlohmann::json baselineJson(const IdentifyResult& r) {
+    nlohmann::json j = {{"model", "rate-state"}, {"parameters", toJson(r.baseline)}};
+    if (!r.baselineNote.empty()) j["note"] = r.baselineNote;
     for (const BoundVerdict& b : r.baselineBounds)
-        j["baseline"]["at_bound"].push_back({{"parameter", b.name},
-                                             {"side", b.side},
-                                             {"bound", num(b.bound)},
-                                             {"second_start", num(b.retryStart)},
-                                             {"second_start_ended_at", num(b.retryValue)},
-                                             {"bic_gain_of_second_start", num(b.bicGain)},
-                                             {"refitted_from_second_start", b.refitted},
-                                             {"verdict", b.solverFailure ? "solver failure" : "the data's answer"}});
-    j["before"] = toJson(r.before);
-    j["after"] = toJson(r.after);
-    j["final_parameters"] = toJson(r.final);
-    if (r.selfTest.ran) j["self_test"] = toJson(r.selfTest);
-    nlohmann::json added = nlohmann::json::array();
-    for (const AddedEffect& e : r.effectsAdded) {
-        nlohmann::json pointed = nlohmann::json::object();
-        for (const SignalCorrelation& c : e.pointedBy) pointed[c.signal] = num(c.correlation);
-        added.push_back({{"name", e.name},
-                         {"parameters", toJson(e.params)},
-                         {"diagnostics", {{"correlations_before", pointed}}},
-                         {"delta_bic", num(e.deltaBic)},
-                         {"held_out_nrmse_before", num(e.heldOutBefore)},
-                         {"held_out_nrmse_after", num(e.heldOutAfter)},
-                         {"confounded_with", e.confoundedWith}});
-        if (!e.note.empty()) added.back()["note"] = e.note;
-    }
-    j["effects_added"] = added;
-    nlohmann::json cands = nlohmann::json::array();
-    for (const CandidateScore& c : r.candidates)
-        cands.push_back({{"name", c.name},
-                         {"round", c.round},
-                         {"applicable", c.applicable},
-                         {"accepted", c.accepted},
-                         {"score", {{"delta_bic", num(c.deltaBic)}, {"fit_nrmse", num(c.fitNrmse)},
-                                    {"held_out_nrmse", c.heldOutNrmse >= 0 ? num(c.heldOutNrmse) : nlohmann::json(nullptr)}}},
-                         {"residual", c.residual},
-                         {"held_out_test", c.heldOutUnits == 0 ? nlohmann::json(nullptr)
-                                                               : nlohmann::json{{"runs", c.heldOutUnits},
-                                                                                {"mean_log_mse_ratio", num(c.heldOutMeanLogRatio)},
-                                                                                {"t", num(c.heldOutT)},
-                                                                                {"p_one_sided", num(c.heldOutP)},
-                                                                                {"test", c.heldOutExact ? "exact sign-flip" : "paired t"},
-                                                                                {"log_mse_ratio_per_run", [&] {
-                                                                                     nlohmann::json a = nlohmann::json::array();
-                                                                                     for (double v : c.heldOutLogRatios) a.push_back(num(v));
-                                                                                     return a;
-                                                                                 }()}}},
-                         {"noise_null", c.nullReplicas == 0 ? nlohmann::json(nullptr)
-                                                            : nlohmann::json{{"gain", num(c.gain)},
-                                                                             {"null_quantile", num(c.nullGain)},
-                                                                             {"replicas", c.nullReplicas}}},
-                         {"size_test", c.sizeParam.empty() ? nlohmann::json(nullptr)
-                                                           : nlohmann::json{{"parameter", c.sizeParam},
-                                                                            {"value", num(c.sizeValue)},
-                                                                            {"vanishes_at", num(c.sizeNull)},
-                                                                            {"stderr", num(c.sizeStderr)},
-                                                                            {"stderr_kind", c.sizeStderrKind},
-                                                                            {"critical_t", num(c.sizeCritical)}}},
-                         {"parameters", toJson(c.params)},
-                         {"size_correlation", [&] {
-                              nlohmann::json o = nlohmann::json::object();
-                              for (const auto& [n, v] : c.sizeCorrelation) o[n] = num(v);
-                              return o;
-                          }()},
-                         {"start_note", c.startNote.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.startNote)},
-                         {"confounded_with", c.confoundedWith.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.confoundedWith)},
-                         {"trades_off_with_baseline", c.tradesOffWithBaseline.empty()
-                                                          ? nlohmann::json(nullptr)
-                                                          : nlohmann::json(c.tradesOffWithBaseline)},
-                         {"rejected_because", c.accepted ? nlohmann::json(nullptr) : nlohmann::json(c.reason)}});
-    j["candidates"] = cands;
-    j["diagnostics"] = {{"before", toJson(r.diagnosticsBefore, true)}, {"after", toJson(r.diagnosticsAfter, true)}};
-    j["unexplained"] = r.unexplained;
-    if (r.unexplained) j["unexplained_reason"] = r.unexplainedReason;
-    j["selection"] = {{"criterion", "BIC with n_eff = min(n / tau_int, slip episodes); an effect must lower it by more than "
+        j["at_bound"].push_back({{"parameter", b.name},
+                                {"side", b.side},
+                                {"bound", num(b.bound)},
+                                {"second_start", num(b.retryStart)},
+                                {"second_start_ended_at", num(b.retryValue)},
+                                {"bic_gain_of_second_start", num(b.bicGain)},
+                                {"refitted_from_second_start", b.refitted},
+                                {"verdict", b.solverFailure ? "solver failure" : "the data's answer"}});
+    return j;
+}
+
+// One effect added: its parameters, the residual correlations that pointed to it, its scores.
+nlohmann::json addedJson(const AddedEffect& e) {
+    nlohmann::json pointed = nlohmann::json::object();
+    for (const SignalCorrelation& c : e.pointedBy) pointed[c.signal] = num(c.correlation);
+    nlohmann::json a({{"name", e.name},
+                     {"parameters", toJson(e.params)},
+                     {"diagnostics", {{"correlations_before", pointed}}},
+                     {"delta_bic", num(e.deltaBic)},
+                     {"held_out_nrmse_before", num(e.heldOutBefore)},
+                     {"held_out_nrmse_after", num(e.heldOutAfter)},
+                     {"confounded_with", e.confoundedWith}});
+    if (!e.note.empty()) a["note"] = e.note;
+    return a;
+}
+
+// One candidate: every test of the selection rule with its numbers, and the verdict.
+nlohmann::json candidateJson(const CandidateScore& c) {
+    return nlohmann::json({{"name", c.name},
+                          {"round", c.round},
+                          {"applicable", c.applicable},
+                          {"accepted", c.accepted},
+                          {"score", {{"delta_bic", num(c.deltaBic)}, {"fit_nrmse", num(c.fitNrmse)},
+                                     {"held_out_nrmse", c.heldOutNrmse >= 0 ? num(c.heldOutNrmse) : nlohmann::json(nullptr)}}},
+                          {"residual", c.residual},
+                          {"held_out_test", c.heldOutUnits == 0 ? nlohmann::json(nullptr)
+                                                                : nlohmann::json{{"runs", c.heldOutUnits},
+                                                                                 {"mean_log_mse_ratio", num(c.heldOutMeanLogRatio)},
+                                                                                 {"t", num(c.heldOutT)},
+                                                                                 {"p_one_sided", num(c.heldOutP)},
+                                                                                 {"test", c.heldOutExact ? "exact sign-flip" : "paired t"},
+                                                                                 {"log_mse_ratio_per_run", [&] {
+                                                                                      nlohmann::json a = nlohmann::json::array();
+                                                                                      for (double v : c.heldOutLogRatios) a.push_back(num(v));
+                                                                                      return a;
+                                                                                  }()}}},
+                          {"noise_null", c.nullReplicas == 0 ? nlohmann::json(nullptr)
+                                                             : nlohmann::json{{"gain", num(c.gain)},
+                                                                              {"null_quantile", num(c.nullGain)},
+                                                                              {"replicas", c.nullReplicas}}},
+                          {"size_test", c.sizeParam.empty() ? nlohmann::json(nullptr)
+                                                            : nlohmann::json{{"parameter", c.sizeParam},
+                                                                             {"value", num(c.sizeValue)},
+                                                                             {"vanishes_at", num(c.sizeNull)},
+                                                                             {"stderr", num(c.sizeStderr)},
+                                                                             {"stderr_kind", c.sizeStderrKind},
+                                                                             {"critical_t", num(c.sizeCritical)}}},
+                          {"parameters", toJson(c.params)},
+                          {"size_correlation", [&] {
+                               nlohmann::json o = nlohmann::json::object();
+                               for (const auto& [n, v] : c.sizeCorrelation) o[n] = num(v);
+                               return o;
+                           }()},
+                          {"start_note", c.startNote.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.startNote)},
+                          {"confounded_with", c.confoundedWith.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.confoundedWith)},
+                          {"trades_off_with_baseline", c.tradesOffWithBaseline.empty()
+                                                           ? nlohmann::json(nullptr)
+                                                           : nlohmann::json(c.tradesOffWithBaseline)},
+                          {"rejected_because", c.accepted ? nlohmann::json(nullptr) : nlohmann::json(c.reason)}});
+}
+
+// The selection rule and its settings.
+nlohmann::json selectionJson(const IdentifyResult& r) {
+    return {{"criterion", "BIC with n_eff = min(n / tau_int, slip episodes); an effect must lower it by more than "
                                     "the margin AND lower the sum of squares by more than the (1 - null_alpha) quantile of "
                                     "what noise replicas of these runs give (AR(1) per run and channel from the current "
                                     "residual, linearised candidate model) AND lower the held-out NRMSE (leave-one-run-out, or the --validate-on runs) "
@@ -153,6 +152,30 @@ nlohmann::json toJson(const IdentifyResult& r) {
                       {"coordinates", r.coordinates},
                       {"state_step", r.stateStep}, {"law_input", r.lawInput},
                       {"residual", r.residual}, {"segments", r.segmentsUsed}};
+}
+
+}  // namespace
+
+nlohmann::json toJson(const IdentifyResult& r) {
+    nlohmann::json j;
+    j["ok"] = r.ok;
+    if (!r.message.empty()) j["message"] = r.message;
+    j["setup"] = r.setup;
+    j["baseline"] = baselineJson(r);
+    j["before"] = toJson(r.before);
+    j["after"] = toJson(r.after);
+    j["final_parameters"] = toJson(r.final);
+    if (r.selfTest.ran) j["self_test"] = toJson(r.selfTest);
+    nlohmann::json added = nlohmann::json::array();
+    for (const AddedEffect& e : r.effectsAdded) added.push_back(addedJson(e));
+    j["effects_added"] = added;
+    nlohmann::json cands = nlohmann::json::array();
+    for (const CandidateScore& c : r.candidates) cands.push_back(candidateJson(c));
+    j["candidates"] = cands;
+    j["diagnostics"] = {{"before", toJson(r.diagnosticsBefore, true)}, {"after", toJson(r.diagnosticsAfter, true)}};
+    j["unexplained"] = r.unexplained;
+    if (r.unexplained) j["unexplained_reason"] = r.unexplainedReason;
+    j["selection"] = selectionJson(r);
     j["wall_time_s"] = r.wallTime_s;
     j["fits"] = r.fits;
     return j;
