@@ -246,80 +246,92 @@ std::string header(int figure, const SimParams& p, const ReproduceOptions& o) {
     return h.str();
 }
 
-void runFigure(const ReproduceOptions& o, int& exitCode) {
+// The figure's parameters (its preset with the --set overrides, validated) and the output
+// directory. False (exit code set) on bad input.
+bool figureParams(const ReproduceOptions& o, SimParams& base, int& exitCode) {
     Preset preset;
     if (!findPreset("fig" + std::to_string(o.figure), preset)) {
         reportError("reproduce", "no preset for figure " + std::to_string(o.figure), kBadArguments, exitCode);
-        return;
+        return false;
     }
-    SimParams base = preset.params;
+    base = preset.params;
     base.integration.tolerance = o.tolerance;
     for (const auto& s : o.sets) {
         std::string key, why;
         double v = 0;
         if (!parseAssignment(s, key, v, &why) || !setParam(base, key, v, &why)) {
             reportError("reproduce", why, kBadArguments, exitCode);
-            return;
+            return false;
         }
     }
     if (const auto issues = base.validate(); !issues.empty()) {
         reportError("reproduce", formatIssues(issues), kBadArguments, exitCode);
-        return;
+        return false;
     }
     std::error_code ec;
     std::filesystem::create_directories(o.out, ec);
     if (ec) {
         reportError("reproduce", o.out + ": cannot create directory: " + ec.message(), kBadInput, exitCode);
-        return;
+        return false;
     }
+    return true;
+}
 
-    // Headless Qt: the widgets need a QApplication; never a display.
-    std::unique_ptr<QApplication> app;
-    if (!QApplication::instance()) {
-        if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
-        static int argc = 1;
-        static char name[] = "stickslip-cli";
-        static char* argv[] = {name, nullptr};
-        app = std::make_unique<QApplication>(argc, argv);
-    }
+// <stem>_sweep.csv and <stem>_summary.csv of the rate-state sweep and, when given, the Coulomb one.
+bool writeSweepCsvs(const ReproduceOptions& o, const SimParams& base, const std::string& stem, const SweepResult& rs,
+                    const SweepResult* cl, int& exitCode) {
+    std::ostringstream csv, summary;
+    csv << header(o.figure, base, o) << "model,param_value,direction,sample,slider_disp_m,rel_vel_mps,friction_ratio\n";
+    summary << header(o.figure, base, o) << "model,param_value,direction,class,period,stick_fraction,max_rel_vel_mps\n";
+    appendSweepCsv(csv, summary, rs, LawKind::RateState);
+    if (cl) appendSweepCsv(csv, summary, *cl, LawKind::Coulomb);
+    return writeText(stem + "_sweep.csv", csv.str(), exitCode) && writeText(stem + "_summary.csv", summary.str(), exitCode);
+}
 
-    const std::string stem = (std::filesystem::path(o.out) / ("fig" + std::to_string(o.figure))).string();
-    const QString aTitle = QStringLiteral("stage amplitude A [mm]");
-    const QString xTitle = QStringLiteral("Poincaré samples of slider x [mm]");
+const QString kAmplitudeTitle = QStringLiteral("stage amplitude A [mm]");
+const QString kSectionTitle = QStringLiteral("Poincaré samples of slider x [mm]");
+
+// Figs 19 and 20: the amplitude sweep, rate-state and (unless --no-coulomb) Coulomb panels.
+void bifurcationFigure(const ReproduceOptions& o, const SimParams& base, const std::string& stem, int& exitCode) {
     const std::string fig = "Fig. " + std::to_string(o.figure);
-
-    if (o.figure == 19 || o.figure == 20) {
-        SweepResult rs, cl;
-        if (!sweepA(base, LawKind::RateState, o, rs, exitCode)) return;
-        if (o.coulomb && !sweepA(base, LawKind::Coulomb, o, cl, exitCode)) return;
-        std::ostringstream csv, summary;
-        csv << header(o.figure, base, o) << "model,param_value,direction,sample,slider_disp_m,rel_vel_mps,friction_ratio\n";
-        summary << header(o.figure, base, o) << "model,param_value,direction,class,period,stick_fraction,max_rel_vel_mps\n";
-        appendSweepCsv(csv, summary, rs, LawKind::RateState);
-        if (o.coulomb) appendSweepCsv(csv, summary, cl, LawKind::Coulomb);
-        if (!writeText(stem + "_sweep.csv", csv.str(), exitCode)) return;
-        if (!writeText(stem + "_summary.csv", summary.str(), exitCode)) return;
-
-        const QString setText = QStringLiteral("k = %1 N/m, t_N = %2 N, f = %3 Hz, ε_T = %4 N/m")
-                                    .arg(base.rig.stiffness_N_per_m)
-                                    .arg(base.rig.normalForce_N)
-                                    .arg(base.drive.frequency_Hz)
-                                    .arg(base.lawParams<RateStateParams>().epsT_N_per_m, 0, 'g', 3);
-        widgets::BifurcationPlot a, c;
-        a.setAxes(aTitle, 1e3, xTitle, 1e3);
-        c.setAxes(aTitle, 1e3, xTitle, 1e3);
-        fillBifurcation(a, rs, LawKind::RateState,
-                        QString::fromStdString(fig) + QStringLiteral(", rate-state model: ") + setText);
-        std::vector<const QwtPlot*> plots{a.plot()};
-        if (o.coulomb) {
-            fillBifurcation(c, cl, LawKind::Coulomb, QString::fromStdString(fig) + QStringLiteral(", Coulomb model (μ = %1)").arg(base.lawParams<CoulombParams>().mu));
-            plots.push_back(c.plot());
-        }
-        exportFigure(plots, 1, QSizeF(180, o.coulomb ? 200 : 110), stem, exitCode);
-        return;
+    SweepResult rs, cl;
+    if (!sweepA(base, LawKind::RateState, o, rs, exitCode)) return;
+    if (o.coulomb && !sweepA(base, LawKind::Coulomb, o, cl, exitCode)) return;
+    if (!writeSweepCsvs(o, base, stem, rs, o.coulomb ? &cl : nullptr, exitCode)) return;
+    const QString setText = QStringLiteral("k = %1 N/m, t_N = %2 N, f = %3 Hz, ε_T = %4 N/m")
+                                .arg(base.rig.stiffness_N_per_m)
+                                .arg(base.rig.normalForce_N)
+                                .arg(base.drive.frequency_Hz)
+                                .arg(base.lawParams<RateStateParams>().epsT_N_per_m, 0, 'g', 3);
+    widgets::BifurcationPlot a, c;
+    a.setAxes(kAmplitudeTitle, 1e3, kSectionTitle, 1e3);
+    c.setAxes(kAmplitudeTitle, 1e3, kSectionTitle, 1e3);
+    fillBifurcation(a, rs, LawKind::RateState, QString::fromStdString(fig) + QStringLiteral(", rate-state model: ") + setText);
+    std::vector<const QwtPlot*> plots{a.plot()};
+    if (o.coulomb) {
+        fillBifurcation(c, cl, LawKind::Coulomb, QString::fromStdString(fig) + QStringLiteral(", Coulomb model (μ = %1)").arg(base.lawParams<CoulombParams>().mu));
+        plots.push_back(c.plot());
     }
+    exportFigure(plots, 1, QSizeF(180, o.coulomb ? 200 : 110), stem, exitCode);
+}
 
-    // Figs 22 and 23: one settled motion at the preset's A.
+// <stem>_spectrum.csv and <stem>_autocorrelation.csv of the slider displacement.
+bool writeSignalCsvs(const ReproduceOptions& o, const SimParams& base, const std::string& stem, const PowerSpectrum& psd,
+                     const Correlation& ac, int& exitCode) {
+    std::ostringstream csv;
+    csv << header(o.figure, base, o) << "frequency_Hz,psd_slider_m2_per_Hz\n";
+    for (size_t i = 0; i < psd.frequency_Hz.size(); ++i) csv << num(psd.frequency_Hz[i]) << ',' << num(psd.psd[i]) << '\n';
+    if (!writeText(stem + "_spectrum.csv", csv.str(), exitCode)) return false;
+    std::ostringstream acsv;
+    acsv << header(o.figure, base, o) << "lag_s,autocorrelation\n";
+    for (size_t i = 0; i < ac.lag_s.size(); ++i) acsv << num(ac.lag_s[i]) << ',' << num(ac.r[i]) << '\n';
+    return writeText(stem + "_autocorrelation.csv", acsv.str(), exitCode);
+}
+
+// Figs 22 and 23: one settled motion at the preset's A (phase portrait, Poincaré section,
+// spectrum, autocorrelation); Fig. 23 puts the bifurcation sweep at this η first.
+void motionFigure(const ReproduceOptions& o, const SimParams& base, const std::string& stem, int& exitCode) {
+    const std::string fig = "Fig. " + std::to_string(o.figure);
     SimParams runParams;
     RunResult run;
     PoincareSection sec;
@@ -337,16 +349,7 @@ void runFigure(const ReproduceOptions& o, int& exitCode) {
     const std::vector<double> x = sliderSeries(run);
     const PowerSpectrum psd = powerSpectrum(x, fs);
     const Correlation ac = autocorrelation(x, fs, static_cast<size_t>(std::lround(10.0 * runParams.drive.period() * fs)));
-    {
-        std::ostringstream csv;
-        csv << header(o.figure, base, o) << "frequency_Hz,psd_slider_m2_per_Hz\n";
-        for (size_t i = 0; i < psd.frequency_Hz.size(); ++i) csv << num(psd.frequency_Hz[i]) << ',' << num(psd.psd[i]) << '\n';
-        if (!writeText(stem + "_spectrum.csv", csv.str(), exitCode)) return;
-        std::ostringstream acsv;
-        acsv << header(o.figure, base, o) << "lag_s,autocorrelation\n";
-        for (size_t i = 0; i < ac.lag_s.size(); ++i) acsv << num(ac.lag_s[i]) << ',' << num(ac.r[i]) << '\n';
-        if (!writeText(stem + "_autocorrelation.csv", acsv.str(), exitCode)) return;
-    }
+    if (!writeSignalCsvs(o, base, stem, psd, ac, exitCode)) return;
 
     const QString at = QStringLiteral("A = %1 mm, η = %2 s/m").arg(base.drive.amplitude_m * 1e3).arg(base.lawParams<RateStateParams>().eta_s_per_m);
     widgets::PhasePortraitPlot phase;
@@ -374,20 +377,31 @@ void runFigure(const ReproduceOptions& o, int& exitCode) {
                      exitCode);
         return;
     }
-    // Fig. 23: the bifurcation sweep with η = 0.2 as the first panel.
     SweepResult rs;
     if (!sweepA(base, LawKind::RateState, o, rs, exitCode)) return;
-    std::ostringstream csv, summary;
-    csv << header(o.figure, base, o) << "model,param_value,direction,sample,slider_disp_m,rel_vel_mps,friction_ratio\n";
-    summary << header(o.figure, base, o) << "model,param_value,direction,class,period,stick_fraction,max_rel_vel_mps\n";
-    appendSweepCsv(csv, summary, rs, LawKind::RateState);
-    if (!writeText(stem + "_sweep.csv", csv.str(), exitCode)) return;
-    if (!writeText(stem + "_summary.csv", summary.str(), exitCode)) return;
+    if (!writeSweepCsvs(o, base, stem, rs, nullptr, exitCode)) return;
     widgets::BifurcationPlot bif;
-    bif.setAxes(aTitle, 1e3, xTitle, 1e3);
+    bif.setAxes(kAmplitudeTitle, 1e3, kSectionTitle, 1e3);
     fillBifurcation(bif, rs, LawKind::RateState,
                     QString::fromStdString(fig) + QStringLiteral(", rate-state, η = %1 s/m").arg(base.lawParams<RateStateParams>().eta_s_per_m));
     exportFigure({bif.plot(), phase.plot(), poincare.plot(), spectrum.plot()}, 2, QSizeF(240, 170), stem, exitCode);
+}
+
+void runFigure(const ReproduceOptions& o, int& exitCode) {
+    SimParams base;
+    if (!figureParams(o, base, exitCode)) return;
+    // Headless Qt: the widgets need a QApplication; never a display.
+    std::unique_ptr<QApplication> app;
+    if (!QApplication::instance()) {
+        if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+        static int argc = 1;
+        static char name[] = "stickslip-cli";
+        static char* argv[] = {name, nullptr};
+        app = std::make_unique<QApplication>(argc, argv);
+    }
+    const std::string stem = (std::filesystem::path(o.out) / ("fig" + std::to_string(o.figure))).string();
+    if (o.figure == 19 || o.figure == 20) bifurcationFigure(o, base, stem, exitCode);
+    else motionFigure(o, base, stem, exitCode);
 }
 
 }  // namespace
