@@ -14,6 +14,79 @@
 
 namespace stickslip::widgets {
 
+namespace {
+
+// The loops of a run: its complete slip excursions grouped by orientation (clockwise,
+// counter-clockwise, flat), each group one point list cut into pieces (one per excursion),
+// the grey pieces between them, and a mark per excursion.
+struct LoopGeometry {
+    QVector<QPointF> all;  // every sample (V, F/t_N)
+    QVector<QPointF> setPts[3];
+    QVector<QPair<int, int>> setPieces[3], greyPieces;
+    std::vector<LoopMark> marks;
+};
+
+LoopGeometry loopGeometry(const std::vector<Sample>& samples) {
+    LoopGeometry g;
+    const size_t n = samples.size();
+    std::vector<double> t(n), v(n), rho(n);
+    QVector<QPointF>& all = g.all;
+    all.resize(static_cast<int>(n));
+    for (size_t k = 0; k < n; ++k) {
+        t[k] = samples[k].t_s;
+        v[k] = samples[k].relVel_mps;
+        rho[k] = samples[k].ratio;
+        all[static_cast<int>(k)] = QPointF(v[k], rho[k]);
+    }
+    // The complete slip excursions, grouped by orientation: one item per orientation draws its
+    // excursions as separate polylines. The grey trajectory is drawn only where no loop covers
+    // it (stick and reversals; each grey piece shares its end samples with the loops it joins).
+    QVector<QPointF>* setPts = g.setPts;
+    QVector<QPair<int, int>>* setPieces = g.setPieces;
+    QVector<QPair<int, int>>& greyPieces = g.greyPieces;
+    int greyFrom = 0;
+    const FrictionLoops loops = frictionLoops(t, v, rho);
+    const LoopOptions opt;
+    size_t i = 0;
+    for (size_t k = 0; k < loops.signedArea.size(); ++k) {
+        LoopMark m;
+        m.index = static_cast<int>(k);
+        m.sign = loops.sign[k];
+        m.t0_s = loops.start_s[k];
+        m.signedArea = loops.signedArea[k];
+        // The excursion: from its start while V keeps its sign.
+        while (i < n && samples[i].t_s < m.t0_s) ++i;
+        double vmin = INFINITY, vmax = -INFINITY, rmin = INFINITY, rmax = -INFINITY;
+        size_t j = i;
+        for (; j < n && (v[j] > 0 ? 1 : (v[j] < 0 ? -1 : 0)) == m.sign; ++j) {
+            vmin = std::min(vmin, v[j]);
+            vmax = std::max(vmax, v[j]);
+            rmin = std::min(rmin, rho[j]);
+            rmax = std::max(rmax, rho[j]);
+        }
+        m.t1_s = samples[j > i ? j - 1 : i].t_s;
+        // Same degeneracy rule as the core (bounding box of the excursion).
+        const double box = (vmax - vmin) * (rmax - rmin);
+        m.orientation =
+            !(box > 0) || std::abs(m.signedArea) <= opt.degenerateFraction * box ? 0 : (m.signedArea < 0 ? -1 : +1);
+        g.marks.push_back(m);
+        if (j > i) {
+            const int o = m.orientation < 0 ? 0 : (m.orientation > 0 ? 1 : 2);
+            const int first = setPts[o].size();
+            setPts[o].append(all.mid(static_cast<int>(i), static_cast<int>(j - i)));
+            setPieces[o].append({first, setPts[o].size() - 1});
+            if (static_cast<int>(i) > greyFrom) greyPieces.append({greyFrom, static_cast<int>(i)});
+            greyFrom = static_cast<int>(j - 1);
+        }
+        i = j;
+    }
+    if (greyFrom < static_cast<int>(n) - 1) greyPieces.append({greyFrom, static_cast<int>(n) - 1});
+
+    return g;
+}
+
+}  // namespace
+
 FrictionLoopPlot::FrictionLoopPlot(QWidget* parent) : PlotWidget(parent) {
     plot_->setTitle(QStringLiteral("Friction loop"));
     setAxisTitles(QStringLiteral("relative velocity V [m/s]"), QStringLiteral("F/t_N [-]"));
@@ -64,57 +137,12 @@ void FrictionLoopPlot::setRun(const RunResult& run, LawKind law) {
         rescale();
         return;
     }
-    const size_t n = samples.size();
-    std::vector<double> t(n), v(n), rho(n);
-    QVector<QPointF> all(static_cast<int>(n));
-    for (size_t k = 0; k < n; ++k) {
-        t[k] = samples[k].t_s;
-        v[k] = samples[k].relVel_mps;
-        rho[k] = samples[k].ratio;
-        all[static_cast<int>(k)] = QPointF(v[k], rho[k]);
-    }
-    // The complete slip excursions, grouped by orientation: one item per orientation draws its
-    // excursions as separate polylines. The grey trajectory is drawn only where no loop covers
-    // it (stick and reversals; each grey piece shares its end samples with the loops it joins).
-    QVector<QPointF> setPts[3];
-    QVector<QPair<int, int>> setPieces[3], greyPieces;
-    int greyFrom = 0;
-    const FrictionLoops loops = frictionLoops(t, v, rho);
-    const LoopOptions opt;
-    size_t i = 0;
-    for (size_t k = 0; k < loops.signedArea.size(); ++k) {
-        LoopMark m;
-        m.index = static_cast<int>(k);
-        m.sign = loops.sign[k];
-        m.t0_s = loops.start_s[k];
-        m.signedArea = loops.signedArea[k];
-        // The excursion: from its start while V keeps its sign.
-        while (i < n && samples[i].t_s < m.t0_s) ++i;
-        double vmin = INFINITY, vmax = -INFINITY, rmin = INFINITY, rmax = -INFINITY;
-        size_t j = i;
-        for (; j < n && (v[j] > 0 ? 1 : (v[j] < 0 ? -1 : 0)) == m.sign; ++j) {
-            vmin = std::min(vmin, v[j]);
-            vmax = std::max(vmax, v[j]);
-            rmin = std::min(rmin, rho[j]);
-            rmax = std::max(rmax, rho[j]);
-        }
-        m.t1_s = samples[j > i ? j - 1 : i].t_s;
-        // Same degeneracy rule as the core (bounding box of the excursion).
-        const double box = (vmax - vmin) * (rmax - rmin);
-        m.orientation =
-            !(box > 0) || std::abs(m.signedArea) <= opt.degenerateFraction * box ? 0 : (m.signedArea < 0 ? -1 : +1);
-        marks_[slot].push_back(m);
-        if (j > i) {
-            const int o = m.orientation < 0 ? 0 : (m.orientation > 0 ? 1 : 2);
-            const int first = setPts[o].size();
-            setPts[o].append(all.mid(static_cast<int>(i), static_cast<int>(j - i)));
-            setPieces[o].append({first, setPts[o].size() - 1});
-            if (static_cast<int>(i) > greyFrom) greyPieces.append({greyFrom, static_cast<int>(i)});
-            greyFrom = static_cast<int>(j - 1);
-        }
-        i = j;
-    }
-    if (greyFrom < static_cast<int>(n) - 1) greyPieces.append({greyFrom, static_cast<int>(n) - 1});
+    LoopGeometry g = loopGeometry(samples);
+    marks_[slot] = std::move(g.marks);
+    const QVector<QPointF>& all = g.all;
+    const QVector<QPointF>* setPts = g.setPts;
+    const QVector<QPair<int, int>>* setPieces = g.setPieces;
+    const QVector<QPair<int, int>>& greyPieces = g.greyPieces;
 
     if (!bg) {
         bg = new PiecewiseCurve(trajectoryTitle);
