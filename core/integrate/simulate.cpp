@@ -3,39 +3,38 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <utility>
 #include <variant>
 
 namespace stickslip {
 
-RunResult simulate(const SimParams& p, const RunControl& ctl, const SlipHistory* history) {
-    if (p.setup == SetupKind::Dynamics) return simulateDynamics(p, ctl);
-    const ParamIssues issues = p.validate();
-    if (!issues.empty()) {
-        RunResult r;
-        r.status = RunStatus::Failed;
-        r.message = formatIssues(issues);
-        return r;
-    }
-    auto overBudget = [](const std::string& why) {
-        RunResult r;
-        r.status = RunStatus::Failed;
-        r.message = why;
-        return r;
-    };
-    const FrictionLaw law = makeLaw(p);
-    if (history) {
-        const double dtIn = (history->t_s.size() > 1) ? (history->t_s.back() - history->t_s.front()) /
-                                                            static_cast<double>(history->t_s.size() - 1)
-                                                      : p.integration.dt_s;
-        const double subSteps = std::max(1.0, std::ceil(dtIn / p.integration.dt_s - 1e-9));
-        const double intervals = history->t_s.empty() ? 0.0 : static_cast<double>(history->t_s.size() - 1);
-        if (std::string why = stepBudgetProblem(subSteps * intervals, p.integration.maxSteps); !why.empty())
-            return overBudget(why);
-        const int sub = subSteps < 2147483647.0 ? static_cast<int>(subSteps) : 2147483647;
-        return simulatePrescribed(law, p.rig.normalForce_N, *history, sub, ctl);
-    }
+namespace {
+
+RunResult failedRun(std::string why) {
+    RunResult r;
+    r.status = RunStatus::Failed;
+    r.message = std::move(why);
+    return r;
+}
+
+// A measured slip history, each interval in the fewest sub-steps of at most dt.
+RunResult simulateHistory(const SimParams& p, const FrictionLaw& law, const SlipHistory& history, const RunControl& ctl) {
+    const double dtIn = (history.t_s.size() > 1) ? (history.t_s.back() - history.t_s.front()) /
+                                                       static_cast<double>(history.t_s.size() - 1)
+                                                 : p.integration.dt_s;
+    const double subSteps = std::max(1.0, std::ceil(dtIn / p.integration.dt_s - 1e-9));
+    const double intervals = history.t_s.empty() ? 0.0 : static_cast<double>(history.t_s.size() - 1);
+    if (std::string why = stepBudgetProblem(subSteps * intervals, p.integration.maxSteps); !why.empty())
+        return failedRun(why);
+    const int sub = subSteps < 2147483647.0 ? static_cast<int>(subSteps) : 2147483647;
+    return simulatePrescribed(law, p.rig.normalForce_N, history, sub, ctl);
+}
+
+// The harmonic slip of the drive, g = A sin(ωt + φ), imposed on the contact.
+RunResult simulateHarmonicSlip(const SimParams& p, const FrictionLaw& law, const RunControl& ctl) {
     if (std::string why = stepBudgetProblem(harmonicRunSteps(p), p.integration.maxSteps); !why.empty())
-        return overBudget(why);
+        return failedRun(why);
     // Harmonic slip g = A sin(ωt + φ), evaluated exactly at every step (not interpolated
     // between output samples: decimating the output must not change the model).
     const long every = p.integration.outputEvery();
@@ -97,6 +96,17 @@ RunResult simulate(const SimParams& p, const RunControl& ctl, const SlipHistory*
         },
         law);
     return r;
+}
+
+}  // namespace
+
+RunResult simulate(const SimParams& p, const RunControl& ctl, const SlipHistory* history) {
+    if (p.setup == SetupKind::Dynamics) return simulateDynamics(p, ctl);
+    const ParamIssues issues = p.validate();
+    if (!issues.empty()) return failedRun(formatIssues(issues));
+    const FrictionLaw law = makeLaw(p);
+    if (history) return simulateHistory(p, law, *history, ctl);
+    return simulateHarmonicSlip(p, law, ctl);
 }
 
 }  // namespace stickslip
