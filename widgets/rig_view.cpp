@@ -37,6 +37,8 @@ protected:
     void paintEvent(QPaintEvent*) override;
 
 private:
+    // The STICK/SLIP label and the sample's values beside it, in the top line(s).
+    void drawReadout(QPainter& p, const QColor& contact, bool stuck, const QPen& ink, double W);
     bool has_ = false;
     Sample sample_;
     double scale_m_ = 1e-3;   // displacement that maps to a quarter of the width
@@ -149,7 +151,15 @@ void RigCanvas::paintEvent(QPaintEvent*) {
         if (std::abs(len) > 1.5) drawArrow(p, base, base + QPointF(len, 0));
     }
 
-    // Read-out.
+    drawReadout(p, contact, stuck, ink, W);
+    // Scale bar.
+    const double bar = scale_m_ * pxPerM;
+    const double by = H - 8;
+    p.drawLine(QPointF(0.05 * W, by), QPointF(0.05 * W + bar, by));
+    p.drawText(QPointF(0.05 * W + bar + 6, by + 4), QStringLiteral("%1 mm (displacements magnified)").arg(scale_m_ * 1e3, 0, 'g', 3));
+}
+
+void RigCanvas::drawReadout(QPainter& p, const QColor& contact, bool stuck, const QPen& ink, double W) {
     p.setPen(ink);
     QFont f = font();
     f.setBold(true);
@@ -179,11 +189,6 @@ void RigCanvas::paintEvent(QPaintEvent*) {
         for (int i = 0; i < lines.size(); ++i)
             p.drawText(line.translated(0, 18 * i), Qt::AlignRight | Qt::AlignVCenter, lines[i]);
     }
-    // Scale bar.
-    const double bar = scale_m_ * pxPerM;
-    const double by = H - 8;
-    p.drawLine(QPointF(0.05 * W, by), QPointF(0.05 * W + bar, by));
-    p.drawText(QPointF(0.05 * W + bar + 6, by + 4), QStringLiteral("%1 mm (displacements magnified)").arg(scale_m_ * 1e3, 0, 'g', 3));
 }
 
 RigView::RigView(QWidget* parent) : QWidget(parent) {

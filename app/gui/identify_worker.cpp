@@ -78,6 +78,34 @@ RunOverlay overlayOf(const CleanRun& c, const std::string& role, SetupKind setup
 }
 
 
+// One law's fit as the Fit tab draws it: overlays of every run and the residual diagnostics.
+LawFit lawFitOf(LawKind law, const identify::DatasetFit& fit, const std::vector<CleanRun>& fitRuns,
+                const std::vector<CleanRun>& valRuns, const DatasetFitSettings& st) {
+    LawFit lf;
+    lf.law = law;
+    lf.fit = fit;
+    for (const CleanRun& c : fitRuns) lf.overlays.push_back(overlayOf(c, "fit", st.setup, lf.fit.model, st.predict));
+    for (const CleanRun& c : valRuns) lf.overlays.push_back(overlayOf(c, "validation", st.setup, lf.fit.model, st.predict));
+    std::vector<DiagnosticRun> diag;
+    // Prescribed: the scored samples are evenly spaced, so the spectrum means something
+    // (dynamics scores short shooting segments).
+    for (size_t k = 0; st.setup == SetupKind::Prescribed && k < fitRuns.size() && k < lf.overlays.size(); ++k) {
+        const RunOverlay& o = lf.overlays[k];
+        if (o.t_s.size() < 16) continue;
+        DiagnosticRun d;
+        d.t_s = o.t_s;
+        for (size_t j = 0; j < o.t_s.size(); ++j) d.residual.push_back(o.measured_N[j] - o.predicted_N[j]);
+        d.slip_m = o.slip_m;
+        d.relVel_mps = o.relVel_mps;
+        fitRuns[k].run.setting("tN", d.normalForce_N);
+        fitRuns[k].run.setting("f", d.forcingFrequency_Hz);
+        d.runIndex = static_cast<int>(k);
+        diag.push_back(std::move(d));
+    }
+    if (!diag.empty()) lf.diagnostics = diagnose(diag);
+    return lf;
+}
+
 double msSince(const QElapsedTimer& t) { return t.nsecsElapsed() / 1.0e6; }
 
 }  // namespace
@@ -122,30 +150,8 @@ FitOutcome runFitJob(const FitRequest& request, const std::atomic<bool>* cancel,
         report((static_cast<double>(i) + 0.95 * f) / nLaws, std::string("fitting ") + toString(request.laws[i]));
     };
     auto fitted = [&](size_t i, const identify::DatasetFit& fit) {
-        LawFit lf;
-        lf.law = request.laws[i];
-        lf.fit = fit;
-        report((static_cast<double>(i) + 0.95) / nLaws, "predicting " + std::string(toString(lf.law)));
-        for (const CleanRun& c : fitRuns) lf.overlays.push_back(overlayOf(c, "fit", st.setup, lf.fit.model, st.predict));
-        for (const CleanRun& c : valRuns) lf.overlays.push_back(overlayOf(c, "validation", st.setup, lf.fit.model, st.predict));
-        std::vector<DiagnosticRun> diag;
-        // Prescribed: the scored samples are evenly spaced, so the spectrum means something
-        // (dynamics scores short shooting segments).
-        for (size_t k = 0; st.setup == SetupKind::Prescribed && k < fitRuns.size() && k < lf.overlays.size(); ++k) {
-            const RunOverlay& o = lf.overlays[k];
-            if (o.t_s.size() < 16) continue;
-            DiagnosticRun d;
-            d.t_s = o.t_s;
-            for (size_t j = 0; j < o.t_s.size(); ++j) d.residual.push_back(o.measured_N[j] - o.predicted_N[j]);
-            d.slip_m = o.slip_m;
-            d.relVel_mps = o.relVel_mps;
-            fitRuns[k].run.setting("tN", d.normalForce_N);
-            fitRuns[k].run.setting("f", d.forcingFrequency_Hz);
-            d.runIndex = static_cast<int>(k);
-            diag.push_back(std::move(d));
-        }
-        if (!diag.empty()) lf.diagnostics = diagnose(diag);
-        out.fits.push_back(std::move(lf));
+        report((static_cast<double>(i) + 0.95) / nLaws, "predicting " + std::string(toString(request.laws[i])));
+        out.fits.push_back(lawFitOf(request.laws[i], fit, fitRuns, valRuns, st));
     };
     std::vector<identify::DatasetFit> fits;
     identify::PipelineStatus status;

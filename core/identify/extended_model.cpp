@@ -60,53 +60,53 @@ LawState ExtendedLaw::initialState(const RunContext& ctx) const {
 // and C1 → w C1, solved by the same Newton iteration; τ → 0 (w → 1, E → 0) is the law without
 // lag (tst_effects::frictionalLagVanishesAsTauGoesToZero). The consistent tangent is
 // dF/dΔg = ε (1 + ε/R') with R' = dR/dΔλ < 0 (0 inside the backlash play).
-ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt, double tN, ExpCache* cache) const {
+namespace {
+
+// What a slipping step needs of the trial state (ExtendedLaw::returnMap).
+struct SlipStart {
+    double a = 0, s = 1;          // |F_tr| and its sign
+    double e0 = 1;                // exp(α_n/r)
+    double yBase = 0, w = 1;      // strength = yBase + w Y_law(α) (frictional_lag; bare: 0, 1)
+    double muPlusH = 0;           // μ_eff + h at the step's start
+    double phiTrial = 0, wTrial = 0;
+};
+
+// exp(α_n/r), exactly as K1 computes it, from the cache when α_n is the cached state's.
+double startExp(const ExtendedLaw& law, double alpha, ExtendedLaw::ExpCache* cache) {
+    if (cache && alpha == cache->alpha) return cache->e;
+    const double e0 = std::exp(alpha / law.base.r);
+    if (cache) cache->alpha = alpha, cache->e = e0;
+    return e0;
+}
+
+// Φ_tr ≤ 0: the elastic step, α unchanged; the contact ages and the lagged strength holds.
+ReturnMapResult stickStep(const ExtendedLaw& law, const LawState& st, double trial, double wTrial, double yTrial,
+                          double dt) {
+    const EffectSet& fx = law.fx;
     ReturnMapResult res;
     res.state = st;
-    const double eps = eps_N_per_m;
-    double trial = 0.0, wTrial = 0.0;
-    if (fx.backlash) {
-        wTrial = st.aux[3] + dg;
-        trial = eps * fx.backlash->deadZone(wTrial);
-    } else {
-        trial = st.force_N + eps * dg;
-    }
-    const double a = std::abs(trial);
-    const double s = trial >= 0.0 ? 1.0 : -1.0;
-    const double mu = muEffective(st, s, tN);
-    const double h = fx.stickHealing ? fx.stickHealing->strength(st.aux[1]) : 0.0;  // aux[1]: contact age θ
-    double e0 = 0.0;  // exp(α_n/r), exactly as K1 computes it
-    if (cache && st.alpha == cache->alpha) {
-        e0 = cache->e;
-    } else {
-        e0 = std::exp(st.alpha / base.r);
-        if (cache) cache->alpha = st.alpha, cache->e = e0;
-    }
-    const double yLaw = tN * (mu + h + base.C1 * (e0 - 1.0));
-    // Strength = yBase + w Y_law(α): the bare law has yBase = 0, w = 1.
-    double yBase = 0.0, w = 1.0;
-    if (fx.frictionalLag) {
-        const FrictionalLag::Hold hd = fx.frictionalLag->hold(dt);
-        yBase = hd.E * st.aux[2] + (hd.q - hd.E) * yLaw;
-        w = hd.w;
-    }
-    const double yTrial = yBase + w * yLaw;  // α unchanged in a stick step
-    const double phiTrial = a - yTrial;
+    res.state.force_N = trial;
+    if (fx.backlash) res.state.aux[3] = wTrial;
+    if (fx.stickHealing) res.state.aux[1] = fx.stickHealing->ageWhileStuck(st.aux[1], dt);
+    if (fx.frictionalLag) res.state.aux[2] = yTrial;
+    res.tangent_N_per_m = (fx.backlash && fx.backlash->inPlay(wTrial)) ? 0.0 : law.eps_N_per_m;
+    // Inside or at the edge of the play F is not F_n + ε Δg: report "not stuck" so that
+    // the Newmark step iterates with this force and tangent instead of its elastic predictor.
+    res.stuck = !(fx.backlash && (fx.backlash->inPlay(wTrial) || fx.backlash->inPlay(st.aux[3])));
+    return res;
+}
 
-    if (phiTrial <= 0.0) {  // stick: elastic step
-        res.state.force_N = trial;
-        if (fx.backlash) res.state.aux[3] = wTrial;
-        if (fx.stickHealing) res.state.aux[1] = fx.stickHealing->ageWhileStuck(st.aux[1], dt);
-        if (fx.frictionalLag) res.state.aux[2] = yTrial;
-        res.tangent_N_per_m = (fx.backlash && fx.backlash->inPlay(wTrial)) ? 0.0 : eps;
-        // Inside or at the edge of the play F is not F_n + ε Δg: report "not stuck" so that
-        // the Newmark step iterates with this force and tangent instead of its elastic predictor.
-        res.stuck = !(fx.backlash && (fx.backlash->inPlay(wTrial) || fx.backlash->inPlay(st.aux[3])));
-        return res;
-    }
+// Φ_tr > 0: Δλ from R(Δλ) = 0 (derivation above ExtendedLaw::returnMap), then the state.
+ReturnMapResult slipStep(const ExtendedLaw& law, const LawState& st, const SlipStart& in, double dt, double tN,
+                         ExtendedLaw::ExpCache* cache) {
+    const RateStateParams& base = law.base;
+    const EffectSet& fx = law.fx;
+    ReturnMapResult res;
+    res.state = st;
     res.stuck = false;
-    ExpCache local;
-    ExpCache& k = cache ? *cache : local;
+    const double eps = law.eps_N_per_m, a = in.a, s = in.s, e0 = in.e0;
+    ExtendedLaw::ExpCache local;
+    ExtendedLaw::ExpCache& k = cache ? *cache : local;
     if (!(k.dt == dt && k.tN == tN)) {
         k.dt = dt;
         k.tN = tN;
@@ -117,7 +117,7 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
         k.c2dt = base.C2() / dt;
     }
     const double visc = k.visc, invDc = k.invDc, c2q = k.c2q, invR = k.invR, c2dt = k.c2dt;
-    const bool constantRate = stateStep == StateStep::ConstantRate;
+    const bool constantRate = law.stateStep == StateStep::ConstantRate;
     auto alphaAt = [&](double x, double& dalpha) {
         if (constantRate) {  // α₁ = −C2 V + (α₀ + C2 V) e^{−Δλ/D_c}, V = Δλ/Δt (StateStep)
             const double E = std::exp(-x * invDc), ss = c2dt * x, excess = (st.alpha + ss) * E;
@@ -131,7 +131,7 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
     };
     double x = 0.0, alpha = st.alpha, dR = -(eps + visc);
     const double hi0 = a / eps;  // the force cannot change sign in a step
-    const double y0 = yBase + w * tN * (mu + h), c1 = w * base.C1;
+    const double y0 = in.yBase + in.w * tN * in.muPlusH, c1 = in.w * base.C1;
     double eAlpha = e0;  // exp(α/r) at the last evaluated α: the next step's exp(α_n/r)
     auto eval = [&](double xx, double& R, double& dRx, double& al) {
         double da = 0;
@@ -152,6 +152,7 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
         // The rate-state law's own solve, from the elastic–viscous predictor Φ_trial/(ε + η t_N/Δt)
         // (as a warm start; from Δλ = 0, where R = Φ_trial and dα/dΔλ = −α_n/D_c in both state
         // steps, when the predictor is beyond the bracket).
+        const double phiTrial = in.phiTrial;
         const double dR0 = -(eps + visc) + tN * c1 * invR * e0 * st.alpha * invDc;
         const SlipRoot root = solveSlip([&](double xx, double& Rx, double& dRx) { eval(xx, Rx, dRx, alpha); }, 0.0, phiTrial,
                                         dR0, 0.0, hi, phiTrial / (eps + visc), 1e-12 * (a + tN));
@@ -168,9 +169,38 @@ ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt,
     res.state.aux[0] = st.aux[0] + x;
     if (fx.stickHealing) res.state.aux[1] = fx.stickHealing->ageAfterSlip(st.aux[1], x, dt);
     if (fx.frictionalLag) res.state.aux[2] = y0 + tN * c1 * (eAlpha - 1.0);
-    if (fx.backlash) res.state.aux[3] = wTrial - s * x;
+    if (fx.backlash) res.state.aux[3] = in.wTrial - s * x;
     res.tangent_N_per_m = (dR < 0.0) ? eps * (1.0 + eps / dR) : 0.0;
     return res;
+}
+
+}  // namespace
+
+ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt, double tN, ExpCache* cache) const {
+    SlipStart in;
+    double trial = 0.0;
+    if (fx.backlash) {
+        in.wTrial = st.aux[3] + dg;
+        trial = eps_N_per_m * fx.backlash->deadZone(in.wTrial);
+    } else {
+        trial = st.force_N + eps_N_per_m * dg;
+    }
+    in.a = std::abs(trial);
+    in.s = trial >= 0.0 ? 1.0 : -1.0;
+    const double mu = muEffective(st, in.s, tN);
+    const double h = fx.stickHealing ? fx.stickHealing->strength(st.aux[1]) : 0.0;  // aux[1]: contact age θ
+    in.muPlusH = mu + h;
+    in.e0 = startExp(*this, st.alpha, cache);
+    const double yLaw = tN * (mu + h + base.C1 * (in.e0 - 1.0));
+    if (fx.frictionalLag) {
+        const FrictionalLag::Hold hd = fx.frictionalLag->hold(dt);
+        in.yBase = hd.E * st.aux[2] + (hd.q - hd.E) * yLaw;
+        in.w = hd.w;
+    }
+    const double yTrial = in.yBase + in.w * yLaw;  // α unchanged in a stick step
+    in.phiTrial = in.a - yTrial;
+    if (in.phiTrial <= 0.0) return stickStep(*this, st, trial, in.wTrial, yTrial, dt);
+    return slipStep(*this, st, in, dt, tN, cache);
 }
 
 namespace {
