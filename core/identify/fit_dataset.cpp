@@ -405,6 +405,34 @@ void scoreRuns(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>
 
 }  // namespace
 
+namespace {
+
+// The solver's settings of the dataset fit.
+void copySolverSettings(const DatasetFitSettings& st, FitProblem& prob) {
+    prob.multistarts = st.multistarts;
+    prob.agreeingStarts = st.agreeingStarts;
+    prob.loss = st.loss;
+    prob.lossScale = st.lossScale;
+    prob.seed = st.seed;
+    prob.maxIterations = st.maxIterations;
+    prob.relativeStep = st.relativeStep;
+    prob.cancel = st.cancel;
+}
+
+// The notes a reader of the solver summary needs first: how the start was found, and which
+// requested parameters the law does not have.
+void prefixSolverNotes(const DatasetFitSettings& st, const std::string& startNote, const std::vector<std::string>& dropped,
+                       FitResult& fit) {
+    if (!startNote.empty()) fit.solverSummary = startNote + "\n" + fit.solverSummary;
+    if (!dropped.empty()) {
+        std::string d;
+        for (const auto& n : dropped) d += (d.empty() ? "" : ", ") + n;
+        fit.solverSummary = std::string("not in the ") + toString(st.law) + " law, not fitted: " + d + "\n" + fit.solverSummary;
+    }
+}
+
+}  // namespace
+
 DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& valRuns, const DatasetFitSettings& st) {
     DatasetFit out;
     out.setup = st.setup;
@@ -446,24 +474,12 @@ DatasetFit fitDataset(const std::vector<CleanRun>& fitRuns, const std::vector<Cl
     if (!layoutResiduals(fitRuns, st, specFor, prob, layout, out.message)) return out;
     installResiduals(prob, fitRuns, st, layout, specFor, curve);
     addScans(st, curve, prob);
-    prob.multistarts = st.multistarts;
-    prob.agreeingStarts = st.agreeingStarts;
-    prob.loss = st.loss;
-    prob.lossScale = st.lossScale;
-    prob.seed = st.seed;
-    prob.maxIterations = st.maxIterations;
-    prob.relativeStep = st.relativeStep;
-    prob.cancel = st.cancel;
+    copySolverSettings(st, prob);
     // With the jackknife the main fit is the first of K + 1 equal parts of the progress.
     const double parts = st.jackknife && fitRuns.size() >= 3 ? static_cast<double>(fitRuns.size() + 1) : 1.0;
     if (st.progress) prob.progress = [&st, parts](double f) { st.progress(f / parts); };
     out.fit = fitLeastSquares(prob);
-    if (!startNote.empty()) out.fit.solverSummary = startNote + "\n" + out.fit.solverSummary;
-    if (!dropped.empty()) {
-        std::string d;
-        for (const auto& n : dropped) d += (d.empty() ? "" : ", ") + n;
-        out.fit.solverSummary = std::string("not in the ") + toString(st.law) + " law, not fitted: " + d + "\n" + out.fit.solverSummary;
-    }
+    prefixSolverNotes(st, startNote, dropped, out.fit);
     if (!out.fit.ok()) {
         out.message = out.fit.message;
         return out;
