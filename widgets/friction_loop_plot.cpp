@@ -11,6 +11,7 @@
 #include "core/analysis/loop_orientation.hpp"
 #include "decimated_curve.hpp"
 #include "plot_style.hpp"
+#include "wrapped_text_label.hpp"
 
 namespace stickslip::widgets {
 
@@ -91,7 +92,7 @@ FrictionLoopPlot::FrictionLoopPlot(QWidget* parent) : PlotWidget(parent) {
     plot_->setTitle(QStringLiteral("Friction loop"));
     setAxisTitles(QStringLiteral("relative velocity V [m/s]"), QStringLiteral("F/t_N [-]"));
     setFactors(1.0, 1.0);
-    summary_ = new QwtPlotTextLabel;
+    summary_ = new WrappedTextLabel;
     summary_->setZ(50);
     summary_->attach(plot_);
     updateSummary();
@@ -204,7 +205,7 @@ void FrictionLoopPlot::updateSummary() {
         const auto ccw = std::count_if(m.begin(), m.end(), [](const LoopMark& x) { return x.orientation > 0; });
         const auto flat = static_cast<long>(m.size()) - cw - ccw;
         QString line = QStringLiteral("%1%2: <span style='color:%3'>%4 clockwise</span>, "
-                                      "<span style='color:%5'>%6 counter-clockwise</span>")
+                                      "<span style='color:%5'>%6 counter&#8209;clockwise</span>")
                            .arg(modelLabel(law), style::modelPenStyle(law) == Qt::DashLine ? QStringLiteral(" (dashed)") : QString())
                            .arg(style::clockwise().name())
                            .arg(cw)
@@ -215,7 +216,7 @@ void FrictionLoopPlot::updateSummary() {
     }
     if (!lines.isEmpty()) lines.prepend(QStringLiteral("slip loops (grey: stick and reversals)"));
     QwtText text(lines.isEmpty() ? QString() : lines.join(QStringLiteral("<br>")), QwtText::RichText);
-    text.setRenderFlags(Qt::AlignLeft | Qt::AlignTop);
+    text.setRenderFlags(Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap);
     QFont f = font();
     f.setPointSizeF(f.pointSizeF() * 0.9);
     text.setFont(f);

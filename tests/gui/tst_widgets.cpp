@@ -33,6 +33,7 @@
 #include "widgets/rig_view.hpp"
 #include "widgets/spectrum_plot.hpp"
 #include "widgets/time_series_plot.hpp"
+#include "widgets/wrapped_text_label.hpp"
 
 #include "tests/file_bytes.hpp"
 #include "tests/gui/short_run.hpp"
@@ -80,6 +81,7 @@ private slots:
     void periodicityMapShowsClasses();
     void rigViewDrivesCursor();
     void hiddenViewUpdatesWhenShown();
+    void wrappedLabelStaysInsideTheCanvas();
 };
 
 void TestWidgets::timeSeriesCurvesEqualSamples() {
@@ -531,6 +533,29 @@ void TestWidgets::hiddenViewUpdatesWhenShown() {
     QVERIFY(w.exportTo(dir.filePath("p.csv")));
     QCOMPARE(calls, 12);
     QVERIFY(!readAll(dir.filePath("p.csv")).contains("rate-state: trajectory"));
+}
+
+// The loop view's summary in a narrow dock: its text wraps inside the canvas instead of running
+// off its right edge (seen on the default preset's screenshot, 361 px canvas).
+void TestWidgets::wrappedLabelStaysInsideTheCanvas() {
+    widgets::WrappedTextLabel label;
+    QwtText t(QStringLiteral("rate-state: <span style='color:#1f77b4'>19 clockwise</span>, "
+                             "<span style='color:#d62728'>162 counter&#8209;clockwise</span>"),
+              QwtText::RichText);
+    t.setRenderFlags(Qt::AlignLeft | Qt::AlignTop);
+    label.setText(t);
+    const QFont font;
+    const QSizeF natural = t.textSize(font);
+    QVERIFY(natural.width() > 50);
+    const QRectF narrow(0, 0, 0.6 * natural.width(), 400);
+    const QRectF r = label.textRect(narrow, font);
+    QVERIFY2(narrow.contains(r), "the text's rectangle leaves the canvas");
+    QVERIFY2(r.height() > 1.5 * natural.height(), "a line too long for the canvas is not wrapped");
+    const QRectF wide(0, 0, 3 * natural.width(), 400);
+    const QRectF rw = label.textRect(wide, font);
+    QVERIFY(std::abs(rw.width() - natural.width()) < 1.0);  // as wide as the text, not the canvas
+    QVERIFY(std::abs(rw.height() - natural.height()) < 1.0);
+    QVERIFY(widgets::WrappedTextLabel().textRect(wide, font).isEmpty());
 }
 
 QTEST_MAIN(TestWidgets)
