@@ -216,7 +216,7 @@ void FrictionLoopPlot::updateSummary() {
     }
     if (!lines.isEmpty()) lines.prepend(QStringLiteral("slip loops (grey: stick and reversals)"));
     QwtText text(lines.isEmpty() ? QString() : lines.join(QStringLiteral("<br>")), QwtText::RichText);
-    text.setRenderFlags(Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap);
+    text.setRenderFlags(Qt::AlignLeft | Qt::AlignTop);  // WrappedTextLabel wraps it at the canvas width
     QFont f = font();
     f.setPointSizeF(f.pointSizeF() * 0.9);
     text.setFont(f);

@@ -233,11 +233,13 @@ private:
     }
     double trialSlip(const DynState& s, double tau) const;
     double locate(const DynState& s, double h, const DynState& y1);
-    // The attempted step from s in run(): its length, whether it ends at tEnd, on which side of a
-    // switch, at a located onset, stuck throughout.
+    // The step run() attempts from s.
     struct Attempt {
-        double h;
-        bool atEnd, stuckEnd, toOnset, throughout;
+        double h;         // its length
+        bool atEnd;       // it ends at tEnd (not when it is cut at a switch inside it)
+        bool stuckEnd;    // the regime it ends in
+        bool toOnset;     // it ends at a located stick → slip switch
+        bool throughout;  // stuck in every base step
     };
     bool cutAtSwitch(DynState& s, int& k, int& relabels, bool one, Attempt& at, DynState& y1, DynState& ym,
                      DynState& y2, detail::TrError& err);
@@ -497,17 +499,16 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
         }
         if (rep_.accepted + rep_.rejected >= o_.maxSteps) return fail("step budget (max_steps) exceeded");
         if (flow_ && s.stuck && relabels < 2 && closedFormStep(s, tEnd, k, relabels, obs)) continue;
-        double h = hOf(k);
-        const bool last = s.t + h >= tEnd - 1e-9 * h;
-        if (last) h = tEnd - s.t;
-        bool atEnd = last;  // the step ends at tEnd (not when it is cut at a switch inside it)
-        bool toOnset = false;  // the step ends at a located stick → slip switch
+        Attempt at{hOf(k), false, false, false, false};
+        const bool last = s.t + at.h >= tEnd - 1e-9 * at.h;
+        if (last) at.h = tEnd - s.t;
+        at.atEnd = last;
         // A slip step by TR-BDF2 is one base step judged by its embedded estimate (err); the
         // other steps are doubled and extrapolated.
         const bool one = embedded_ && !s.stuck;
         detail::TrError err;
-        const bool ok = one ? (last ? singleFresh(s, h, y1, err) : single(kit(k), s, h, y1, err))
-                            : (last ? doubledFresh(s, h, y1, ym, y2) : doubled(kit(k), kit(k + 4), s, h, y1, ym, y2));
+        const bool ok = one ? (last ? singleFresh(s, at.h, y1, err) : single(kit(k), s, at.h, y1, err))
+                            : (last ? doubledFresh(s, at.h, y1, ym, y2) : doubled(kit(k), kit(k + 4), s, at.h, y1, ym, y2));
         if (!ok) {
             ++rep_.rejected;
             if (k >= kMax_) return fail("base step failed at the smallest step");
@@ -516,34 +517,31 @@ AdaptiveReport Adaptive<Law>::run(DynState& s, double tEnd, const AdaptiveObserv
         }
         if (one) ym = y2 = y1;
         const bool same = y1.stuck == s.stuck && ym.stuck == s.stuck && y2.stuck == s.stuck;
-        bool stuckEnd = y2.stuck, throughout = same && s.stuck;
-        if (!same && o_.locateSwitches && relabels < 2) {
-            Attempt at{h, atEnd, stuckEnd, toOnset, throughout};
-            if (!cutAtSwitch(s, k, relabels, one, at, y1, ym, y2, err)) continue;
-            h = at.h, atEnd = at.atEnd, stuckEnd = at.stuckEnd, toOnset = at.toOnset, throughout = at.throughout;
-        }
-        const double r = one ? ratioEmbedded(err, h) : ratio(y1, y2, h, throughout, errFull_);
+        at.stuckEnd = y2.stuck;
+        at.throughout = same && s.stuck;
+        if (!same && o_.locateSwitches && relabels < 2 && !cutAtSwitch(s, k, relabels, one, at, y1, ym, y2, err)) continue;
+        const double r = one ? ratioEmbedded(err, at.h) : ratio(y1, y2, at.h, at.throughout, errFull_);
         if (!(r <= 1.0) && k < kMax_) {
             ++rep_.rejected;
             // A located step that is too long: regular steps approach the switch instead.
-            while (k < kMax_ && hOf(k) > h) ++k;
-            k = std::max(k, nextLevel(k, r, throughout));
+            while (k < kMax_ && hOf(k) > at.h) ++k;
+            k = std::max(k, nextLevel(k, r, at.throughout));
             continue;
         }
         DynState next = y1;
-        if (one) next.stuck = stuckEnd;
-        else next = combine(y1, y2, throughout, stuckEnd);
+        if (one) next.stuck = at.stuckEnd;
+        else next = combine(y1, y2, at.throughout, at.stuckEnd);
         if (!std::isfinite(next.x) || !std::isfinite(next.v) || !std::isfinite(next.law.force_N) ||
             !std::isfinite(next.law.alpha))
             return fail("non-finite state");
         relabels = 0;
-        accept(s, next, atEnd, tEnd, obs);
-        k = nextLevel(k, r, throughout);
+        accept(s, next, at.atEnd, tEnd, obs);
+        k = nextLevel(k, r, at.throughout);
         // A slip onset located by the scheme (closedFormStick off, or handed back to it): the
         // steps grow again from h_max/64 instead of one step of the size reached in stick
         // spanning the law's transients. (From kOnset, the order test's run at h_max = T/2000,
         // TOL 0.5, went from 4.7e-6 to 1.0e-4: kept as it was for the scheme's own path.)
-        if (toOnset && tr_) k = std::max(k, kStart_);
+        if (at.toOnset && tr_) k = std::max(k, kStart_);
     }
     return rep_;
 }
