@@ -170,6 +170,7 @@ inline bool newmarkStep(const NewmarkConstants& K, const Law& law, Prepared* pre
             const double J = K.Keff + rm.tangent_N_per_m;
             const double dx = r / J;
             x -= dx;
+            if (!std::isfinite(x)) { why = "non-finite slider state (x)"; badValue = x; return false; }
             rm = law.returnMap(s.law, du - (x - s.x), h, K.tN);
             lawIts += rm.iterations;
             ++newtonIts;
@@ -197,8 +198,16 @@ inline bool newmarkStep(const RigParams& rig, const Law& law, const StageMotion&
                         int& newtonIts, int& lawIts, const char*& why, double& badValue) {
     const NewmarkConstants K(rig, law.epsT(), h);
     const double u1 = stage.displacement(s.t + h);
-    return newmarkStep(K, law, static_cast<int*>(nullptr), u1, s, Coupling::Newton, newtonIts, lawIts, why,
-                       badValue);
+    // No prepared map (Newton coupling), typed as the law's own so that the main form compiles
+    // for laws that have one (for the others any pointer type does).
+    if constexpr (HasPreparedReturnMap<Law>) {
+        using Prepared = decltype(law.prepare(0.0, 0.0, 0.0));
+        return newmarkStep(K, law, static_cast<Prepared*>(nullptr), u1, s, Coupling::Newton, newtonIts, lawIts, why,
+                           badValue);
+    } else {
+        return newmarkStep(K, law, static_cast<int*>(nullptr), u1, s, Coupling::Newton, newtonIts, lawIts, why,
+                           badValue);
+    }
 }
 
 template <class Law, class Obs>

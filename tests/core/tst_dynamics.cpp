@@ -42,6 +42,17 @@ double stickThreshold(const SimParams& p) {
     return p.lawParams<CoulombParams>().mu * p.rig.normalForce_N * std::abs(k + eps - m * w * w) / (eps * std::abs(k - m * w * w));
 }
 
+// A law seen only through returnMap and epsT, without a prepared (condensed) return map, as the
+// identify module's extended laws are: the convenience form of detail::newmarkStep steps such
+// laws as well as the registered ones (which have a prepared map; that form once passed an int*
+// as the prepared map and did not compile for them).
+template <class L>
+struct ReturnMapOnly {
+    L law;
+    ReturnMapResult returnMap(const LawState& s, double dg, double dt, double tN) const { return law.returnMap(s, dg, dt, tN); }
+    double epsT() const { return law.epsT(); }
+};
+
 }  // namespace
 
 class TstDynamics : public QObject {
@@ -305,6 +316,152 @@ private slots:
             QVERIFY2(contains(r.message, "step 2971 "), r.message.c_str());
         }
         if (what == "A") QVERIFY2(contains(r.message, "step 1 "), r.message.c_str());
+    }
+
+    // One Newmark step (detail::newmarkStep) with the Coulomb law from a state chosen by hand,
+    // by each path: the condensed return map (the default of advance), the monolithic Newton
+    // coupling, and the convenience form (with the law, and with a law seen through returnMap
+    // only). Whatever the
+    // contact does, the step satisfies the average-acceleration relations
+    // x₁ − x₀ = h/2 (v₀ + v₁), v₁ − v₀ = h/2 (a₀ + a₁) and Eq. 8 at the step end,
+    // m a₁ + c v₁ + k x₁ = F₁. Stuck (|F| < μ t_N): F₁ = F₀ + ε_T Δg with Δg = Δu − Δx, which
+    // with the above gives x₁ in closed form, in one iteration. Slipping (the slider rushing
+    // back at 0.5 m/s): |F₁| = μ t_N exactly and F₁ = F₀ + ε_T (Δg − Δλ), Δλ = λ̇ h > 0.
+    void newmarkStepStuckAndSlippingCoulomb() {
+        SimParams p = fig20Params();
+        p.law = LawKind::Coulomb;
+        const CoulombLaw law{p.lawParams<CoulombParams>()};
+        const StageMotion stage = StageMotion::harmonic(p.drive);
+        const double h = p.integration.dt_s, eps = law.params.epsT_N_per_m, muTN = 0.25 * 6.2;
+        const double m = p.rig.mass_kg, c = p.rig.damping_Ns_per_m, k = p.rig.stiffness_N_per_m;
+        const detail::NewmarkConstants K(p.rig, eps, h);
+        auto prep = law.prepare(K.returnStiffness, h, K.tN);
+        for (const char* path : {"condensed", "newton", "convenience", "convenience, return map only"}) {
+            for (const bool slip : {false, true}) {
+                DynState s;
+                s.t = 0.01;
+                s.u = stage.displacement(s.t);
+                s.x = s.u - 1e-6;
+                s.v = slip ? -0.5 : 0.05;
+                s.a = 1.0;
+                s.law.force_N = 1.0;
+                const DynState s0 = s;
+                int newtonIts = 0, lawIts = 0;
+                const char* why = nullptr;
+                double bad = 0;
+                const std::string which = path;
+                const bool ok = which == "convenience" ? detail::newmarkStep(p.rig, law, stage, h, s, newtonIts, lawIts, why, bad)
+                    : which != "condensed" && which != "newton"
+                        ? detail::newmarkStep(p.rig, ReturnMapOnly<CoulombLaw>{law}, stage, h, s, newtonIts, lawIts, why, bad)
+                        : detail::newmarkStep(K, law, which == "condensed" ? &prep : nullptr, stage.displacement(s.t + h), s,
+                                          which == "condensed" ? Coupling::Condensed : Coupling::Newton, newtonIts, lawIts,
+                                          why, bad);
+                QVERIFY2(ok, why);
+                QCOMPARE(s.t, s0.t + h);
+                QCOMPARE(s.u, stage.displacement(s0.t + h));
+                const double dx = s.x - s0.x, dg = (s.u - s0.u) - dx;
+                QVERIFY2(std::abs(dx - h / 2 * (s0.v + s.v)) <= 1e-12 * std::abs(dx), path);
+                QVERIFY2(std::abs((s.v - s0.v) - h / 2 * (s0.a + s.a)) <= 1e-10 * std::abs(s.v - s0.v), path);
+                const double eq8 = m * s.a + c * s.v + k * s.x - s.law.force_N;
+                QVERIFY2(std::abs(eq8) < 1e-8, qPrintable(QString("%1: Eq. 8 residual %2 N").arg(path).arg(eq8)));
+                if (!slip) {
+                    const double Keff = 4 * m / (h * h) + 2 * c / h + k;
+                    const double b = m * (4 / (h * h) * (s0.x + h * s0.v) + s0.a) + c * (2 / h * s0.x + s0.v);
+                    const double x1 = (b + s0.law.force_N + eps * (s.u - s0.u + s0.x)) / (Keff + eps);
+                    QVERIFY2(s.stuck, path);
+                    QCOMPARE(newtonIts, 1);
+                    QCOMPARE(s.slipRate, 0.0);
+                    QVERIFY2(std::abs(s.x - x1) <= 1e-14 * std::abs(x1), path);
+                    QVERIFY2(std::abs(s.law.force_N - (s0.law.force_N + eps * dg)) <= 1e-9, path);
+                    QVERIFY(std::abs(s.law.force_N) < muTN);
+                } else {
+                    QVERIFY2(!s.stuck, path);
+                    const double dLambda = s.slipRate * h;
+                    QVERIFY(dLambda > 0);
+                    QVERIFY2(std::abs(s.law.force_N - muTN) <= 1e-12 * muTN, path);
+                    QVERIFY2(std::abs(s.law.force_N - (s0.law.force_N + eps * (dg - dLambda))) <= 1e-8, path);
+                }
+            }
+        }
+    }
+
+    // The convenience newmarkStep stepped by hand (the rate-state law through its returnMap, exact
+    // u(t), monolithic Newton) takes the
+    // steps advance() takes with Coupling::Newton (stage by the rotation recurrence, same to
+    // ~1e-19 m): over one period of the Fig. 20 set, sticking and slipping, the same stuck steps
+    // and x, F within 1e-9 of their scales.
+    void newmarkStepAgreesWithAdvance() {
+        SimParams p = fig20Params();
+        DynamicsModel model = DynamicsModel::fromParams(p);
+        model.coupling = Coupling::Newton;
+        const RateStateLaw law{p.lawParams<RateStateParams>()};
+        const long n = 10000;
+        std::vector<DynState> ref;
+        ref.reserve(n);
+        DynState a = model.initialState();
+        const StepReport rep = advance(model, a, n, [&](const DynState& st) { ref.push_back(st); });
+        QVERIFY2(rep.status == RunStatus::Ok, rep.message.c_str());
+        DynState s = model.initialState();
+        long stuck = 0, newton = 0, lawTotal = 0;
+        double errX = 0, errF = 0;
+        for (long i = 0; i < n; ++i) {
+            int newtonIts = 0, lawIts = 0;
+            const char* why = nullptr;
+            double bad = 0;
+            QVERIFY2(detail::newmarkStep(p.rig, law, model.stage, p.integration.dt_s, s, newtonIts, lawIts, why, bad), why);
+            stuck += s.stuck ? 1 : 0;
+            newton += newtonIts;
+            lawTotal += lawIts;
+            errX = std::max(errX, std::abs(s.x - ref[size_t(i)].x));
+            errF = std::max(errF, std::abs(s.law.force_N - ref[size_t(i)].law.force_N));
+        }
+        qInfo("newmarkStep vs advance: max|dx| = %.3g m, max|dF| = %.3g N, %ld stuck", errX, errF, stuck);
+        QVERIFY(stuck > 0 && stuck < n);
+        QVERIFY(std::abs(stuck - rep.stuckSteps) <= 2);
+        QVERIFY(newton >= n && lawTotal > 0);
+        QVERIFY(errX <= 1e-9 * p.drive.amplitude_m);
+        QVERIFY(errF <= 1e-9 * p.rig.normalForce_N);
+        QVERIFY(std::abs(s.t - a.t) < 1e-12);
+    }
+
+    // stepFailure: "step N at t = T s: WHAT (value V)" for each quantity newmarkStep reports;
+    // a failing newmarkStep leaves the state as it was and names the quantity, and advance()
+    // reports exactly stepFailure of that step.
+    void newmarkStepFailureMessage() {
+        for (const char* what : {"return mapping did not converge (slip increment)",
+                                 "slider Newton iteration did not converge (x)", "non-finite slider state (x)",
+                                 "non-finite friction force (F)", "non-finite state variable (alpha)"})
+            QCOMPARE(detail::stepFailure(7, 0.5, what, -2.5), "step 7 at t = 0.5 s: " + std::string(what) + " (value -2.5)");
+        QCOMPARE(detail::stepFailure(123456789012L, 1.0 / 3.0, "x", 1e300),
+                 std::string("step 123456789012 at t = 0.333333333 s: x (value 1e+300)"));
+        QCOMPARE(detail::stepFailure(1, 2.5e-5, "F", 1.0 / 7.0), std::string("step 1 at t = 2.5e-05 s: F (value 0.142857)"));
+        const std::string inf = detail::stepFailure(2, 0, "F", std::numeric_limits<double>::infinity());
+        QVERIFY2(contains(inf, "(value inf)"), inf.c_str());
+        SimParams p = fig20Params();
+        p.law = LawKind::Coulomb;
+        DynamicsModel model = DynamicsModel::fromParams(p);
+        model.coupling = Coupling::Newton;
+        model.rig.mass_kg = std::nan("");
+        const DynState s0 = model.initialState(0.2);
+        DynState s = s0;
+        int newtonIts = 0, lawIts = 0;
+        const char* why = nullptr;
+        double bad = 0;
+        const ReturnMapOnly<CoulombLaw> law{CoulombLaw{p.lawParams<CoulombParams>()}};
+        QVERIFY(!detail::newmarkStep(model.rig, law, model.stage, model.dt_s, s, newtonIts, lawIts, why, bad));
+        QVERIFY(why != nullptr);
+        // x is NaN from the predictor on (the Coulomb map takes the NaN trial as slip): reported
+        // as what it is, at the first iterate, not as 60 Newton iterations that did not converge.
+        QCOMPARE(std::string(why), std::string("non-finite slider state (x)"));
+        QVERIFY2(newtonIts <= 2, qPrintable(QString::number(newtonIts)));
+        QVERIFY(std::isnan(bad));
+        QCOMPARE(s.t, s0.t);
+        QCOMPARE(s.x, s0.x);
+        QCOMPARE(s.law.force_N, s0.law.force_N);
+        DynState viaAdvance = s0;
+        const StepReport rep = advanceQuiet(model, viaAdvance, 10);
+        QVERIFY(rep.status == RunStatus::Failed);
+        QCOMPARE(rep.message, detail::stepFailure(1, s0.t + model.dt_s, why, bad));
     }
 
     // Failure messages number steps from stepOffset.
