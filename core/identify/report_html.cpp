@@ -49,8 +49,10 @@ std::string svgLinePlot(const std::vector<SvgSeries>& series, const std::string&
             x0 = std::min(x0, s.x[i]); x1 = std::max(x1, s.x[i]);
             y0 = std::min(y0, s.y[i]); y1 = std::max(y1, s.y[i]);
         }
-    if (!(x1 > x0)) { x0 = 0; x1 = 1; }
-    if (!(y1 > y0)) { y0 -= 1; y1 += 1; }
+    // No finite point: the unit frame. One value of x (or of y) only: a frame of width 2
+    // centred on it, so that the points are drawn in its middle.
+    if (!std::isfinite(x0)) { x0 = 0; x1 = 1; } else if (!(x1 > x0)) { x0 -= 1; x1 += 1; }
+    if (!std::isfinite(y0)) { y0 = 0; y1 = 1; } else if (!(y1 > y0)) { y0 -= 1; y1 += 1; }
     const double pad = 0.05 * (y1 - y0);
     y0 -= pad; y1 += pad;
     const int L = 70, R = 15, T = 28, B = 42;
