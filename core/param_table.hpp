@@ -77,7 +77,8 @@ const std::vector<ParamDef>& paramTable();
 const ParamDef* findParam(const std::string& key);
 // Issues of `v` for `key` against the table's bounds (none for an unknown key).
 void checkParam(const char* key, double v, ParamIssues& out);
-// The keys with a fit range, space-separated: "k m c tN mu eta Dc …" (for help and messages).
+// The keys with a fit range in the table's order, space-separated: "tN k m c mu eta Dc …" (for help
+// and messages).
 std::string fitParamKeys();
 // The default of a key (a default-constructed SimParams read through the row's field); NaN if unknown.
 double paramDefault(const std::string& key);

@@ -89,7 +89,8 @@ struct ModelSpec {
 };
 
 // The SimParams of one run: the run's known settings (k, m, c, tN, A, f) then the model's
-// values. False (with a message) when a name is unknown.
+// values. A model's ζ sets c = 2ζ sqrt(k m) only on runs without a recorded c (a measured
+// damping is a known setting, not a fit's). False (with a message) when a name is unknown.
 bool runParams(const CleanRun& run, const ModelSpec& spec, SimParams& out, std::string* error);
 
 Prediction predictPrescribed(const CleanRun& run, const FrictionLaw& law, double normalForce_N, const PredictSettings& s);

@@ -10,6 +10,7 @@
 #include "core/analysis/classify.hpp"
 #include "core/analysis/lyapunov.hpp"
 #include "core/analysis/poincare.hpp"
+#include "core/analysis/section_stepping.hpp"
 #include "core/analysis/stick_threshold.hpp"
 #include "core/integrate/simulate.hpp"
 #include "core/presets.hpp"
@@ -159,6 +160,187 @@ private slots:
         QVERIFY2(std::abs(sec.maxRelVel_mps - vmax) <= 1e-12 * vmax,
                  qPrintable(QString("%1 vs %2").arg(sec.maxRelVel_mps, 0, 'g', 17).arg(vmax, 0, 'g', 17)));
     }
+    // phaseOffsetSteps = round(phase/2π · n) mod n, into [0, n): a whole turn is no offset,
+    // a phase that rounds up to n steps wraps to 0, negative phases count back from n.
+    void phaseOffsetStepsRoundsModN() {
+        using detail::phaseOffsetSteps;
+        QCOMPARE(phaseOffsetSteps(0.0, 100), 0L);
+        QCOMPARE(phaseOffsetSteps(kPi / 2, 100), 25L);
+        QCOMPARE(phaseOffsetSteps(kPi, 100), 50L);
+        QCOMPARE(phaseOffsetSteps(2 * kPi * 0.994, 100), 99L);   // 99.4 → 99
+        QCOMPARE(phaseOffsetSteps(2 * kPi * 0.996, 100), 0L);    // 99.6 → 100 ≡ 0
+        QCOMPARE(phaseOffsetSteps(2 * kPi * 0.0049, 100), 0L);   // 0.49 → 0
+        QCOMPARE(phaseOffsetSteps(2 * kPi * 0.0051, 100), 1L);   // 0.51 → 1
+        QCOMPARE(phaseOffsetSteps(2 * kPi, 100), 0L);
+        QCOMPARE(phaseOffsetSteps(4 * kPi + kPi / 2, 100), 25L);
+        QCOMPARE(phaseOffsetSteps(-kPi / 2, 100), 75L);
+        QCOMPARE(phaseOffsetSteps(-2 * kPi, 100), 0L);
+        QCOMPARE(phaseOffsetSteps(-2 * kPi * 0.996, 100), 0L);  // −99.6 → −100 ≡ 0
+        QCOMPARE(phaseOffsetSteps(kPi / 3, 10000), 1667L);       // 1666.67
+        QCOMPARE(phaseOffsetSteps(kPi, 7), 4L);                  // 3.5 rounds away from zero
+        for (double phase : {0.0, 1.0, 3.0, 6.0, -1.0})
+            QCOMPARE(phaseOffsetSteps(phase, 1), 0L);
+        // A section phase just below 2π samples on the cycle boundary, as phase 0 does: the
+        // first point one period after the settled cycles, not two.
+        PoincareOptions o;
+        o.stepsPerPeriod = 200;
+        o.settleCycles = 0;
+        o.cycles = 2;
+        o.phase_rad = 2 * kPi - 1e-3;  // 199.97 steps → 200 ≡ 0
+        const PoincareSection sec = poincareSection(preset("default"), o);
+        QVERIFY2(sec.ok(), sec.message.c_str());
+        const double T = 1.0 / 3.0;
+        QVERIFY(std::abs(sec.t_s[0] - T) < 1e-9);
+        QVERIFY(std::abs(sec.t_s[1] - 2 * T) < 1e-9);
+    }
+
+    // appendSectionPoint appends (t, x, V = u̇(t) − ẋ, F/t_N, α) of the state and touches
+    // nothing else; u̇ is the model's stage velocity A ω cos(ωt + φ).
+    void appendSectionPointRecordsTheState() {
+        SimParams p = preset("default");
+        p.drive.phase_rad = 0.3;
+        p.rig.normalForce_N = 4.0;
+        const DynamicsModel m = DynamicsModel::fromParams(p);
+        DynState s;
+        s.t = 0.7;
+        s.x = 2.5e-4;
+        s.v = -0.01;
+        s.law.force_N = -1.2;
+        s.law.alpha = 0.35;
+        PoincareSection out;
+        detail::appendSectionPoint(m, s, out);
+        DynState s2 = s;
+        s2.t = 1.1;
+        s2.x = -1e-4;
+        detail::appendSectionPoint(m, s2, out);
+        QCOMPARE(out.size(), std::size_t(2));
+        QCOMPARE(out.t_s, (std::vector<double>{0.7, 1.1}));
+        QCOMPARE(out.slider_m, (std::vector<double>{2.5e-4, -1e-4}));
+        QCOMPARE(out.ratio, (std::vector<double>{-0.3, -0.3}));
+        QCOMPARE(out.alpha, (std::vector<double>{0.35, 0.35}));
+        QCOMPARE(out.relVel_mps.size(), std::size_t(2));
+        const double w = 2 * kPi * 3.0;
+        for (std::size_t i = 0; i < 2; ++i) {
+            const double V = 1e-3 * w * std::cos(w * out.t_s[i] + 0.3) + 0.01;
+            QVERIFY2(std::abs(out.relVel_mps[i] - V) <= 1e-14, qPrintable(QString::number(out.relVel_mps[i] - V)));
+        }
+        QCOMPARE(out.slipSteps, 0L);
+        QCOMPARE(out.stickFraction, 0.0);
+        QCOMPARE(out.maxRelVel_mps, 0.0);
+        QVERIFY(out.ok());
+    }
+
+    // poincareSectionFrom from a prepared model and state: settle, then one point per period at
+    // t = (settle + k) T, each the state after k more periods of the same steps (brute force,
+    // cycle by cycle as the section steps), stick fraction = stuck / sampled steps, s left at
+    // the last point so that a second call continues the first; progress rises to 1; a cancel
+    // stops it with status Cancelled.
+    void poincareSectionFromContinuesAPreparedState() {
+        const SimParams p = preset("fig20");  // sticks and slips at A = 1 mm
+        const long n = 1000;
+        const DynamicsModel m = poincareModel(p, n);
+        const double T = p.drive.period();
+        DynState s = m.initialState(0.0);
+        std::vector<double> progress;
+        RunControl ctl;
+        ctl.progress = [&](double f) { progress.push_back(f); };
+        const PoincareSection a = poincareSectionFrom(m, s, n, 3, 4, ctl);
+        QVERIFY2(a.ok(), a.message.c_str());
+        QCOMPARE(a.size(), std::size_t(4));
+        QVERIFY(std::abs(a.period_s - T) <= 1e-15 * T);
+        QCOMPARE(progress.size(), std::size_t(7));
+        QVERIFY(std::is_sorted(progress.begin(), progress.end()) && progress.back() == 1.0);
+        DynState ref = m.initialState(0.0);
+        for (int c = 0; c < 3; ++c) advanceQuiet(m, ref, n);
+        long stuck = 0;
+        double vmax = 0;
+        for (std::size_t k = 0; k < 4; ++k) {
+            advance(m, ref, n, [&](const DynState& st) {
+                stuck += st.stuck ? 1 : 0;
+                vmax = std::max(vmax, std::abs(m.stage.velocity(st.t) - st.v));
+            });
+            QVERIFY(std::abs(a.t_s[k] - double(3 + k + 1) * T) < 1e-9);
+            QCOMPARE(a.slider_m[k], ref.x);
+            QCOMPARE(a.ratio[k], ref.law.force_N / p.rig.normalForce_N);
+            QCOMPARE(a.alpha[k], ref.law.alpha);
+            QVERIFY(std::abs(a.relVel_mps[k] - (m.stage.velocity(ref.t) - ref.v)) <= 1e-12);
+        }
+        QVERIFY(stuck > 0 && stuck < 4 * n);
+        QCOMPARE(a.slipSteps, 4 * n - stuck);
+        QCOMPARE(a.stickFraction, double(stuck) / double(4 * n));
+        QVERIFY(std::abs(a.maxRelVel_mps - vmax) <= 1e-12 * vmax);
+        QCOMPARE(s.t, a.t_s.back());
+        QCOMPARE(s.x, a.slider_m.back());
+        // Continuing from s: the next points of one longer section.
+        const PoincareSection b = poincareSectionFrom(m, s, n, 0, 2);
+        DynState s2 = m.initialState(0.0);
+        const PoincareSection whole = poincareSectionFrom(m, s2, n, 3, 6);
+        QVERIFY(b.ok() && whole.ok());
+        for (std::size_t k = 0; k < 2; ++k) {
+            QVERIFY(std::abs(b.t_s[k] - whole.t_s[4 + k]) < 1e-9);
+            QCOMPARE(b.slider_m[k], whole.slider_m[4 + k]);
+        }
+        std::atomic<bool> cancel{true};
+        RunControl stop;
+        stop.cancel = &cancel;
+        DynState s3 = m.initialState(0.0);
+        const PoincareSection c = poincareSectionFrom(m, s3, n, 2, 2, stop);
+        QVERIFY(c.status == RunStatus::Cancelled);
+        QCOMPARE(c.message, std::string("cancelled"));
+        QCOMPARE(c.size(), std::size_t(0));
+    }
+
+    // poincareSectionAdaptive on a period-1 orbit (Fig. 20 set, A = 1 mm) samples at exactly
+    // s.t + (settle + k) T and agrees with the fixed-step section. The fixed step (Newmark with
+    // the backward-Euler return map) is first order while slipping (adaptive.hpp: e = c1 h + …),
+    // so its section moves toward the adaptive one as N grows (seen: x off by 3.7e-3 A at
+    // N = 10 000, 9.8e-4 A at 40 000, 2.5e-4 A at 160 000) and the extrapolation
+    // x_4N + (x_4N − x_N)/3 of N = 40 000 and 160 000 meets it to the tolerance, 1e-5 (seen:
+    // 4.7e-6 A in x, 9.7e-6 A ω in V, 1.2e-6 in F/t_N); the bounds allow 5e-5.
+    void adaptiveSectionAgreesWithFixedStep() {
+        const SimParams p = preset("fig20");
+        const double T = p.drive.period(), A = p.drive.amplitude_m, vScale = A * p.drive.omega();
+        const long settle = 20, cycles = 3;
+        auto fixedSection = [&](long n) {
+            const DynamicsModel fm = poincareModel(p, n);
+            DynState fs = fm.initialState(0.0);
+            return poincareSectionFrom(fm, fs, n, settle, cycles);
+        };
+        const PoincareSection coarse = fixedSection(40000), fine = fixedSection(160000);
+        QVERIFY(coarse.ok() && fine.ok());
+        AdaptiveOptions o;
+        o.tolerance = 1e-5;
+        const DynamicsModel am = DynamicsModel::fromParams(p);
+        DynState as = am.initialState(0.0);
+        const PoincareSection ad = poincareSectionAdaptive(am, as, T, settle, cycles, o);
+        QVERIFY2(ad.ok(), ad.message.c_str());
+        QCOMPARE(ad.size(), std::size_t(cycles));
+        QCOMPARE(ad.period_s, T);
+        QVERIFY(std::abs(as.t - double(settle + cycles) * T) <= 1e-12);
+        double errX = 0, errV = 0, errR = 0, offCoarse = 0, offFine = 0;
+        auto extrapolated = [&](const std::vector<double>& c, const std::vector<double>& f, std::size_t k) {
+            return f[k] + (f[k] - c[k]) / 3;
+        };
+        for (std::size_t k = 0; k < ad.size(); ++k) {
+            QVERIFY(std::abs(ad.t_s[k] - double(settle + long(k) + 1) * T) <= 1e-12);
+            errX = std::max(errX, std::abs(ad.slider_m[k] - extrapolated(coarse.slider_m, fine.slider_m, k)));
+            errV = std::max(errV, std::abs(ad.relVel_mps[k] - extrapolated(coarse.relVel_mps, fine.relVel_mps, k)));
+            errR = std::max(errR, std::abs(ad.ratio[k] - extrapolated(coarse.ratio, fine.ratio, k)));
+            offCoarse = std::max(offCoarse, std::abs(ad.slider_m[k] - coarse.slider_m[k]));
+            offFine = std::max(offFine, std::abs(ad.slider_m[k] - fine.slider_m[k]));
+        }
+        qInfo("adaptive vs fixed: x off %.3g A (N = 40 000), %.3g A (160 000), extrapolated: |dx| = %.3g A, "
+              "|dV| = %.3g A w, |dF/tN| = %.3g; stick %.4f vs %.4f, max|V| %.6g vs %.6g", offCoarse / A, offFine / A,
+              errX / A, errV / vScale, errR, ad.stickFraction, fine.stickFraction, ad.maxRelVel_mps, fine.maxRelVel_mps);
+        QVERIFY(offFine < 0.5 * offCoarse);  // the fixed section converges toward the adaptive one
+        QVERIFY(errX <= 5e-5 * A);
+        QVERIFY(errV <= 5e-5 * vScale);
+        QVERIFY(errR <= 5e-5);
+        QVERIFY(std::abs(ad.stickFraction - fine.stickFraction) <= 2e-3);
+        QVERIFY(std::abs(ad.maxRelVel_mps - fine.maxRelVel_mps) <= 1e-2 * fine.maxRelVel_mps);
+        QVERIFY(ad.slipSteps > 0);
+    }
+
     void sectionReportsBadInputAndCancel() {
         SimParams p = preset("default");
         p.rig.normalForce_N = -1;

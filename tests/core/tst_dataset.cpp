@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 
 #include "core/io/dataset.hpp"
 
@@ -76,6 +77,79 @@ private slots:
         QVERIFY(why.find("friction") != std::string::npos);
         QVERIFY(!m.addColumns("force=Fx", &why));
         QVERIFY(why.find("unknown signal") != std::string::npos);
+    }
+
+    // The signal table of dataset.hpp (the enum comment): each signal's key, default column and
+    // SI unit as documented; keys and columns distinct; every key parses back to its signal;
+    // every SI unit is accepted for its signal by --units with factor exactly 1; and a file
+    // whose header is the default column names loads every signal without a mapping.
+    void signalKeysColumnsAndUnits() {
+        struct Row {
+            Signal s;
+            const char* key;
+            const char* column;
+            const char* unit;
+        };
+        const Row rows[] = {
+            {Signal::Time, "time", "time_s", "s"},
+            {Signal::StageDisp, "stage_disp", "stage_disp_m", "m"},
+            {Signal::SliderDisp, "slider_disp", "slider_disp_m", "m"},
+            {Signal::Slip, "slip", "slip_m", "m"},
+            {Signal::RelVel, "rel_vel", "rel_vel_mps", "m/s"},
+            {Signal::StageVel, "stage_vel", "stage_vel_mps", "m/s"},
+            {Signal::SliderVel, "slider_vel", "slider_vel_mps", "m/s"},
+            {Signal::Friction, "friction", "friction_force_N", "N"},
+            {Signal::Normal, "normal", "normal_force_N", "N"},
+            {Signal::Tension, "tension", "band_tension_N", "N"},
+            {Signal::SliderAccel, "slider_accel", "slider_accel_mps2", "m/s^2"},
+        };
+        QCOMPARE(std::size(rows), kSignalCount);
+        std::set<std::string> keys, columns;
+        std::string header, line;
+        for (const Row& r : rows) {
+            QCOMPARE(std::string(signalKey(r.s)), std::string(r.key));
+            QCOMPARE(std::string(defaultColumn(r.s)), std::string(r.column));
+            QCOMPARE(std::string(signalUnit(r.s)), std::string(r.unit));
+            keys.insert(r.key);
+            columns.insert(r.column);
+            Signal back = r.s == Signal::Time ? Signal::Friction : Signal::Time;  // anything else
+            QVERIFY2(parseSignal(signalKey(r.s), back), r.key);
+            QVERIFY2(back == r.s, r.key);
+            ColumnMapping m;
+            std::string why;
+            QVERIFY2(m.addUnits(std::string(r.key) + "=" + signalUnit(r.s), &why), why.c_str());
+            QCOMPARE(m.scaleToSI.at(r.s), 1.0);
+            header.append(header.empty() ? "" : ",").append(defaultColumn(r.s));
+        }
+        QCOMPARE(keys.size(), kSignalCount);
+        QCOMPARE(columns.size(), kSignalCount);
+        std::string csv = header + "\n";
+        for (int i = 0; i < 8; ++i) {
+            csv += std::to_string(i * 1e-3);  // time increasing; the rest small physical values
+            for (size_t j = 1; j < kSignalCount; ++j) csv.append(",").append(std::to_string(0.5 + 0.01 * double(j)));
+            csv += "\n";
+        }
+        Run run;
+        DatasetError err;
+        QVERIFY2(loadRun(writeTemp("h5_defaults.csv", csv), ColumnMapping{}, run, err), err.what().c_str());
+        for (const Row& r : rows) {
+            QVERIFY2(run.has(r.s), r.key);
+            QCOMPARE(run.sourceColumn.at(r.s), std::string(r.column));
+        }
+        QCOMPARE(run[Signal::Normal][3], 0.5 + 0.01 * double(static_cast<size_t>(Signal::Normal)));
+    }
+
+    // parseSignal accepts exactly the keys: not the column names, another case, blanks around
+    // the key or a hyphen for the underscore; on refusal `out` keeps the caller's value.
+    void parseSignalRejectsUnknownKeys() {
+        for (const char* bad : {"", "force", "Friction", "FRICTION", " friction", "friction ", "friction_force_N",
+                                "time_s", "slider-disp", "slider_accel_mps2", "-"}) {
+            Signal out = Signal::SliderAccel;
+            QVERIFY2(!parseSignal(bad, out), bad);
+            QVERIFY2(out == Signal::SliderAccel, bad);
+        }
+        Signal out = Signal::Time;
+        QVERIFY(parseSignal("slider_accel", out) && out == Signal::SliderAccel);
     }
 
     void signalMappedToDashIsNotRead() {

@@ -1,12 +1,20 @@
 // core/dsp pieces that became public when they moved out of the run pipeline: the one median
-// and the one harmonic fit (the filters, Savitzky–Golay and resampling are in tst_preprocess).
+// and the one harmonic fit (the filters, Savitzky–Golay and resampling are in tst_preprocess);
+// and the one FFTW planner lock of core/analysis.
 #include <QtTest>
 
 #include <Eigen/Dense>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <mutex>
 #include <numbers>
+#include <thread>
 #include <vector>
 
+#include "core/analysis/correlation.hpp"
+#include "core/analysis/fftw_lock.hpp"
+#include "core/analysis/spectrum.hpp"
 #include "core/dsp/fourier.hpp"
 #include "core/dsp/stats.hpp"
 
@@ -45,6 +53,41 @@ double wobble(size_t i) { return 1e-4 * std::sin(0.37 * static_cast<double>(i * 
 class TstDsp : public QObject {
     Q_OBJECT
 private slots:
+    // fftwPlanMutex (core/analysis/fftw_lock.hpp) is one lock for the process: the same object
+    // on every call and from every thread. The analyses plan under it: while this thread holds
+    // it, a spectrum or an autocorrelation on another thread cannot finish; released, they do,
+    // and they leave it free again.
+    void fftwPlanMutexIsOneLock() {
+        std::mutex& lock = stickslip::detail::fftwPlanMutex();
+        QCOMPARE(&stickslip::detail::fftwPlanMutex(), &lock);
+        std::mutex* fromThread = nullptr;
+        std::thread([&] { fromThread = &stickslip::detail::fftwPlanMutex(); }).join();
+        QCOMPARE(fromThread, &lock);
+        std::vector<double> x(512);
+        for (size_t i = 0; i < x.size(); ++i) x[i] = std::sin(2 * kPi * 5.0 * static_cast<double>(i) / 100.0) + wobble(i);
+        for (int which = 0; which < 2; ++which) {
+            std::atomic<bool> done{false};
+            bool ok = false;
+            bool finishedWhileHeld = true;
+            {
+                std::unique_lock<std::mutex> held(lock);
+                std::thread worker([&] {
+                    ok = which == 0 ? stickslip::powerSpectrum(x, 100.0).ok
+                                    : std::abs(stickslip::autocorrelation(x, 100.0, 50).r.at(0) - 1.0) < 1e-12;
+                    done = true;
+                });
+                std::this_thread::sleep_for(std::chrono::milliseconds(150));
+                finishedWhileHeld = done.load();
+                held.unlock();
+                worker.join();  // before any QVERIFY can return
+            }
+            QVERIFY2(!finishedWhileHeld, which == 0 ? "spectrum" : "autocorrelation");
+            QVERIFY(done.load() && ok);
+            QVERIFY(lock.try_lock());  // released after planning and destroying
+            lock.unlock();
+        }
+    }
+
     void medianOddEvenEmpty() {
         QCOMPARE(median({3.0, 1.0, 2.0}), 2.0);
         QCOMPARE(median({5.0, -1.0, 4.0, 9.0, 0.5}), 4.0);

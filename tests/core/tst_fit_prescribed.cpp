@@ -1,7 +1,9 @@
 // Prescribed-slip fits (paper Fig. 15a): on runs made with this project's own law (no hidden
 // effect) plus force noise, the parameters come back within the reported standard errors; the
 // Coulomb law cannot follow the rate dependence; time splits partition the window; and a
-// real damper run is fitted to a physically sensible level.
+// real damper run is fitted to a physically sensible level. Below the fits: the SimParams of a
+// run (runParams), the prescribed-slip prediction at the parameters that made a run
+// (predictPrescribed, predictRun) and the per-run error score (scoreRun).
 #include <QtTest>
 
 #include <algorithm>
@@ -24,8 +26,9 @@ RateStateParams truthLaw() {
     return p;
 }
 
-// Slip g = A sin(2π f t) sampled at 1 kHz; force from the law (fine steps) plus 0.05 N noise.
-CleanRun measuredPrescribed(double A, double f, double tN, uint64_t seed, bool filters = false) {
+// Slip g = A sin(2π f t) sampled at 1 kHz; force from the law (fine steps) plus white noise
+// (0.05 N unless given; 0: the law's force exactly).
+CleanRun measuredPrescribed(double A, double f, double tN, uint64_t seed, bool filters = false, double noise_N = 0.05) {
     const RateStateParams law = truthLaw();
     DriveParams d;
     d.amplitude_m = A;
@@ -36,11 +39,11 @@ CleanRun measuredPrescribed(double A, double f, double tN, uint64_t seed, bool f
     io::Run run;
     run.file = "prescribed_A" + std::to_string(A * 1e3) + "mm_f" + std::to_string(f);
     std::mt19937_64 rng(seed);
-    std::normal_distribution<double> fn(0.0, 0.05);
+    std::normal_distribution<double> fn(0.0, noise_N > 0 ? noise_N : 1.0);
     for (size_t i = 0; i < r.samples.size(); ++i) {
         run[Signal::Time].push_back(h.t_s[i]);
         run[Signal::StageDisp].push_back(h.slip_m[i]);
-        run[Signal::Friction].push_back(r.samples[i].force_N + fn(rng));
+        run[Signal::Friction].push_back(r.samples[i].force_N + (noise_N > 0 ? fn(rng) : 0.0));
     }
     run.settings = {{"tN", tN}, {"f", f}};
     PreprocessSettings pre;
@@ -56,6 +59,23 @@ CleanRun measuredPrescribed(double A, double f, double tN, uint64_t seed, bool f
     std::string why;
     if (!preprocessRun(run, pre, c, &why)) qFatal("%s", why.c_str());
     return c;
+}
+
+// The truth law as a model specification (C1 given, so not tied to μ).
+ModelSpec truthSpec() {
+    const RateStateParams t = truthLaw();
+    ModelSpec m;
+    m.law = LawKind::RateState;
+    m.tieC1ToMu = false;
+    m.values = {{"mu", t.mu}, {"C1", t.C1}, {"eta", t.eta_s_per_m}, {"Dc", t.Dc_m}, {"vc", t.vc_mps}, {"epsT", t.epsT_N_per_m}};
+    return m;
+}
+
+// Largest |prediction − measured force| over the predicted samples.
+double worstForceError(const CleanRun& c, const Prediction& p) {
+    double worst = 0;
+    for (size_t k = 0; k < p.index.size(); ++k) worst = std::max(worst, std::abs(p.force_N[k] - c.run[Signal::Friction][p.index[k]]));
+    return worst;
 }
 
 }  // namespace
@@ -268,6 +288,154 @@ private slots:
         qInfo("mu t_N = %.1f N, 75th percentile |F| = %.1f N, NRMSE %.3f", f.fit.value("mu") * tN, level, f.fitNrmse);
         QVERIFY(std::abs(f.fit.value("mu") * tN - level) < 0.2 * level);
         QVERIFY(f.fitNrmse > 0.0 && f.fitNrmse < 0.5);
+    }
+
+    // A run's SimParams: its known settings (k, m, t_N, A, f, phase) over the defaults, then the
+    // model's values, which win; C1 follows μ unless given or untied; ζ sets c = 2 ζ sqrt(k m)
+    // from the run's k and the final m; an unknown name is refused, naming it.
+    void runParamsTakesTheRunsSettingsThenTheModels() {
+        CleanRun run;
+        run.run.settings = {{"k", 1234.0}, {"m", 0.61}, {"tN", 9.5}, {"A", 3e-3}, {"f", 2.5}, {"phase", 0.4}};
+        ModelSpec spec;
+        spec.values = {{"mu", 0.31}, {"eta", 1.7}, {"Dc", 4e-5}};
+        SimParams p;
+        p.rig.damping_Ns_per_m = 99.0;  // stale content is replaced
+        std::string why;
+        QVERIFY2(runParams(run, spec, p, &why), why.c_str());
+        QCOMPARE(p.rig.stiffness_N_per_m, 1234.0);
+        QCOMPARE(p.rig.mass_kg, 0.61);
+        QCOMPARE(p.rig.normalForce_N, 9.5);
+        QCOMPARE(p.drive.amplitude_m, 3e-3);
+        QCOMPARE(p.drive.frequency_Hz, 2.5);
+        QCOMPARE(p.drive.phase_rad, 0.4);
+        QCOMPARE(p.rig.damping_Ns_per_m, SimParams{}.rig.damping_Ns_per_m);  // neither c nor ζ: the default
+        QVERIFY(p.law == LawKind::RateState);
+        QCOMPARE(p.lawParams<RateStateParams>().mu, 0.31);
+        QCOMPARE(p.lawParams<RateStateParams>().C1, 0.31);  // tied to μ
+        QCOMPARE(p.lawParams<RateStateParams>().eta_s_per_m, 1.7);
+        QCOMPARE(p.lawParams<RateStateParams>().Dc_m, 4e-5);
+        QCOMPARE(p.lawParams<RateStateParams>().vc_mps, RateStateParams{}.vc_mps);
+        // The model's m over the run's; ζ with the run's k and that m.
+        spec.values["m"] = 0.7;
+        spec.values["zeta"] = 0.01;
+        QVERIFY2(runParams(run, spec, p, &why), why.c_str());
+        QCOMPARE(p.rig.mass_kg, 0.7);
+        QCOMPARE(p.rig.damping_Ns_per_m, 2 * 0.01 * std::sqrt(1234.0 * 0.7));
+        // The run's recorded c.
+        spec.values.erase("zeta");
+        run.run.settings["c"] = 0.77;
+        QVERIFY2(runParams(run, spec, p, &why), why.c_str());
+        QCOMPARE(p.rig.damping_Ns_per_m, 0.77);
+        // C1 given, or untied: not μ.
+        spec.values["C1"] = 0.2;
+        QVERIFY2(runParams(run, spec, p, &why), why.c_str());
+        QCOMPARE(p.lawParams<RateStateParams>().C1, 0.2);
+        spec.values.erase("C1");
+        spec.tieC1ToMu = false;
+        QVERIFY2(runParams(run, spec, p, &why), why.c_str());
+        QCOMPARE(p.lawParams<RateStateParams>().C1, RateStateParams{}.C1);
+        spec.law = LawKind::Coulomb;
+        QVERIFY2(runParams(run, spec, p, &why), why.c_str());
+        QVERIFY(p.law == LawKind::Coulomb);
+        spec.values["viscosity"] = 1.0;
+        QVERIFY(!runParams(run, spec, p, &why));
+        QVERIFY2(why.find("'viscosity'") != std::string::npos, why.c_str());
+    }
+
+    // At the parameters that made a noise-free run (law steps as the data were made), the
+    // prediction is the run's force: the law starts from the measured force at the start of the
+    // warm-up and forgets α's start (0) within its slip of many D_c. It covers the fit window
+    // every stride-th sample; predictRun (the dispatch through runParams, t_N from the run) gives
+    // the same numbers; another μ does not reproduce the force.
+    void predictPrescribedReproducesTheSimulatedForce() {
+        const CleanRun c = measuredPrescribed(2e-3, 2.0, 10.0, 1, false, 0.0);
+        double rms = 0;
+        for (size_t i = c.begin; i < c.end; ++i) rms += c.run[Signal::Friction][i] * c.run[Signal::Friction][i];
+        rms = std::sqrt(rms / double(c.end - c.begin));
+        PredictSettings s;
+        s.stride = 1;
+        s.substeps = 8;
+        const Prediction p = predictPrescribed(c, FrictionLaw{RateStateLaw{truthLaw()}}, 10.0, s);
+        QVERIFY2(p.ok, p.message.c_str());
+        QCOMPARE(p.index.size(), c.end - c.begin);
+        QCOMPARE(p.index.front(), c.begin);
+        QCOMPARE(p.index.back(), c.end - 1);
+        QCOMPARE(p.force_N.size(), p.index.size());
+        QVERIFY(p.slider_m.empty());
+        const double worst = worstForceError(c, p);
+        qInfo("largest force error at the true parameters: %.3g N (force RMS %.3g N)", worst, rms);
+        QVERIFY(worst < 1e-6 * rms);
+        const Prediction viaSpec = predictRun(c, SetupKind::Prescribed, truthSpec(), s);
+        QVERIFY2(viaSpec.ok, viaSpec.message.c_str());
+        QVERIFY(viaSpec.index == p.index);
+        QVERIFY(viaSpec.force_N == p.force_N);
+        // Decimated: every 4th sample of the window, still close to the force.
+        s.stride = 4;
+        s.substeps = 32;
+        const Prediction d = predictPrescribed(c, FrictionLaw{RateStateLaw{truthLaw()}}, 10.0, s);
+        QVERIFY2(d.ok, d.message.c_str());
+        QVERIFY(d.index.front() >= c.begin && d.index.front() < c.begin + 4 && d.index.back() < c.end);
+        for (size_t k = 1; k < d.index.size(); ++k) QCOMPARE(d.index[k] - d.index[k - 1], size_t(4));
+        QVERIFY2(worstForceError(c, d) < 0.02 * rms, qPrintable(QString::number(worstForceError(c, d))));
+        // Another law: the comparison sees it.
+        RateStateParams other = truthLaw();
+        other.mu = 0.44;
+        s.stride = 1;
+        s.substeps = 8;
+        const Prediction o = predictPrescribed(c, FrictionLaw{RateStateLaw{other}}, 10.0, s);
+        QVERIFY(o.ok && worstForceError(c, o) > 0.05 * rms);
+        // No friction force: refused, naming the run.
+        CleanRun noForce = c;
+        noForce.run[Signal::Friction].clear();
+        const Prediction n = predictPrescribed(noForce, FrictionLaw{RateStateLaw{truthLaw()}}, 10.0, s);
+        QVERIFY(!n.ok);
+        QVERIFY2(n.message.find(c.run.file) != std::string::npos, n.message.c_str());
+    }
+
+    // NRMSE = RMS(prediction − measured) / RMS(measured) over the scored samples. The prediction
+    // does not read the measured force in the window (the law starts at the warm-up), so a run
+    // whose scored force is the model's own prediction scores 0 exactly, and shifted by δ it
+    // scores rms_N = |δ|, NRMSE = |δ| / RMS(prediction + δ). At the true law the error of a
+    // noisy run is its 0.05 N noise. An unknown model name fails with NaN scores.
+    void scoreRunIsTheNormalisedRmsOfThePredictionError() {
+        const CleanRun c = measuredPrescribed(2e-3, 2.0, 10.0, 7);
+        PredictSettings s;
+        s.stride = 1;
+        s.substeps = 8;
+        Prediction p;
+        const RunScore noisy = scoreRun(c, SetupKind::Prescribed, truthSpec(), s, "validation", &p);
+        QVERIFY2(noisy.ok, noisy.message.c_str());
+        QCOMPARE(noisy.file, c.run.file);
+        QCOMPARE(noisy.role, std::string("validation"));
+        QCOMPARE(noisy.samples, p.index.size());
+        QCOMPARE(noisy.samples, c.end - c.begin);
+        QCOMPARE(noisy.nrmse, noisy.nrmseForce);
+        QCOMPARE(noisy.rms_m, 0.0);
+        qInfo("force RMS error at the true law: %.4f N (noise 0.05 N)", noisy.rms_N);
+        QVERIFY(std::abs(noisy.rms_N - 0.05) < 0.0025);
+        CleanRun own = c;
+        for (size_t k = 0; k < p.index.size(); ++k) own.run[Signal::Friction][p.index[k]] = p.force_N[k];
+        const RunScore zero = scoreRun(own, SetupKind::Prescribed, truthSpec(), s, "fit");
+        QVERIFY2(zero.ok, zero.message.c_str());
+        QCOMPARE(zero.rms_N, 0.0);
+        QCOMPARE(zero.nrmse, 0.0);
+        const double delta = -0.3;
+        double ms = 0;
+        for (size_t k = 0; k < p.index.size(); ++k) {
+            own.run[Signal::Friction][p.index[k]] += delta;
+            ms += (p.force_N[k] + delta) * (p.force_N[k] + delta);
+        }
+        const RunScore shifted = scoreRun(own, SetupKind::Prescribed, truthSpec(), s, "fit");
+        QVERIFY2(shifted.ok, shifted.message.c_str());
+        QVERIFY(std::abs(shifted.rms_N - 0.3) < 1e-12);
+        const double want = 0.3 / std::sqrt(ms / double(p.index.size()));
+        QVERIFY2(std::abs(shifted.nrmse - want) < 1e-12 * want, qPrintable(QString("%1 vs %2").arg(shifted.nrmse).arg(want)));
+        ModelSpec bad = truthSpec();
+        bad.values["viscosity"] = 1.0;
+        const RunScore failed = scoreRun(c, SetupKind::Prescribed, bad, s, "fit");
+        QVERIFY(!failed.ok);
+        QVERIFY(std::isnan(failed.nrmse));
+        QVERIFY2(failed.message.find("viscosity") != std::string::npos, failed.message.c_str());
     }
 };
 

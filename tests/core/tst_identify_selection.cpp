@@ -150,6 +150,25 @@ private slots:
         sc.accepted = true;
         QVERIFY(verdictOf(sc).rfind("added; ", 0) == 0);
     }
+    // The reports' note on a baseline trade-off: nothing unless the candidate trades off with a
+    // baseline parameter (however large its correlations), else that parameter and its own
+    // correlation (not another key's), sign kept, to three decimals.
+    void baselineTradeOffTextNamesTheParameterAndItsCorrelation() {
+        CandidateScore sc;
+        sc.sizeCorrelation = {{"eta", -0.98765}, {"mu", 0.5}, {"epsT", 0.99999}};
+        QCOMPARE(baselineTradeOffText(sc), std::string());
+        sc.tradesOffWithBaseline = "eta";
+        QCOMPARE(baselineTradeOffText(sc), std::string("its size trades off with the baseline's eta (correlation -0.988): "
+                                                       "the data cannot tell the two apart"));
+        sc.tradesOffWithBaseline = "mu";
+        const std::string mu = baselineTradeOffText(sc);
+        QVERIFY2(mu.find("the baseline's mu (correlation 0.500)") != std::string::npos, mu.c_str());
+        // verdictOf is the reason followed by exactly this text.
+        sc.reason = "dBIC = 2 is not below -10";
+        QCOMPARE(verdictOf(sc), sc.reason + "; " + mu);
+        sc.tradesOffWithBaseline.clear();
+        QCOMPARE(verdictOf(sc), sc.reason);
+    }
     // The baseline restart (IdentifyOptions::heldOutRestart) is taken only for a gain on the
     // evidence scale of an effect: the damper's marginal one (sum of squares 945.60 -> 944.84,
     // session 13) is not, a D16-like one (NRMSE 0.1336 -> 0.0404) is; no finite gain, no restart.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <set>
 
 #include "core/friction/friction_law.hpp"
@@ -271,6 +272,201 @@ private slots:
         QVERIFY(getParam(q, "mu", v));
         QCOMPARE(v, 0.4);
         QCOMPARE(lawMu(q), 0.4);
+    }
+
+    // checkParam (param_table.hpp): a value outside a row's bounds gives one issue naming the key,
+    // the value and the bound (open or closed; the upper bound with its unit); in-range values,
+    // both closed ends included, give none, and so does any value of an unknown key. Issues
+    // are appended to what `out` already holds.
+    void checkParamNamesKeyValueAndRange() {
+        const struct {
+            const char* key;
+            double value;
+            const char* message;
+        } bad[] = {
+            {"tN", -1.0, "tN = -1 is out of range: must be > 0"},
+            {"tN", 0.0, "tN = 0 is out of range: must be > 0"},  // open lower bound
+            {"k", -5.0, "k = -5 is out of range: must be >= 0"},
+            {"A", 2.0, "A = 2 is out of range: must be <= 1 m"},
+            {"A", -0.5, "A = -0.5 is out of range: must be >= 0"},
+            {"Dc", -2e-5, "Dc = -2e-05 is out of range: must be > 0"},
+            {"phase", kInf, "phase = inf is out of range: must be finite"},
+            {"transient", -1.0, "transient = -1 is out of range: must be >= 0"},
+        };
+        for (const auto& c : bad) {
+            ParamIssues out;
+            checkParam(c.key, c.value, out);
+            QVERIFY2(out.size() == 1, c.message);
+            QCOMPARE(out[0].field, std::string(c.key));
+            QCOMPARE(out[0].value, c.value);
+            QCOMPARE(out[0].message(), std::string(c.message));
+        }
+        ParamIssues out;
+        checkParam("tN", kNaN, out);  // NaN fails every comparison: out of range, not accepted
+        QCOMPARE(out.size(), size_t(1));
+        QVERIFY(std::isnan(out[0].value));
+        for (const auto& [key, v] : std::vector<std::pair<const char*, double>>{
+                 {"tN", 6.2}, {"A", 0.0}, {"A", 1.0}, {"k", 0.0}, {"phase", -7.0}, {"transient", 0.0}, {"dt", 1e-9}})
+            checkParam(key, v, out);
+        QVERIFY2(out.size() == 1, formatIssues(out).c_str());
+        for (double v : {-1.0, kNaN, kInf}) checkParam("speed", v, out);  // unknown key: nothing to check
+        checkParam("", -1.0, out);
+        QCOMPARE(out.size(), size_t(1));
+        checkParam("m", 0.0, out);  // appended after the NaN issue
+        QCOMPARE(out.size(), size_t(2));
+        QCOMPARE(out[1].field, std::string("m"));
+        // Every row: its default is accepted; just past its lower bound (NaN when unbounded) is not.
+        for (const ParamDef& d : paramTable()) {
+            ParamIssues issues;
+            checkParam(d.key, paramDefault(d.key), issues);
+            QVERIFY2(issues.empty(), formatIssues(issues).c_str());
+            const double below = !std::isfinite(d.lower) ? kNaN : d.lowerOpen ? d.lower : d.lower - 1.0;
+            checkParam(d.key, below, issues);
+            QVERIFY2(issues.size() == 1, d.key);
+            checkIssue(issues[0], d.key, below);
+        }
+    }
+
+    // fitParamKeys lists exactly the rows with a valid fit range, once each, in table order,
+    // separated by single spaces; the help text's examples are among them and dt is not.
+    void fitParamKeysAreTheFitRows() {
+        const std::string listed = fitParamKeys();
+        QVERIFY(!listed.empty() && listed.front() != ' ' && listed.back() != ' ');
+        QVERIFY(!contains(listed, "  "));
+        std::vector<std::string> keys;
+        for (const QString& k : QString::fromStdString(listed).split(' ')) keys.push_back(k.toStdString());
+        std::vector<std::string> expected;
+        for (const ParamDef& d : paramTable())
+            if (d.fit.valid()) expected.push_back(d.key);
+        QCOMPARE(keys, expected);
+        QCOMPARE(std::set<std::string>(keys.begin(), keys.end()).size(), keys.size());
+        for (const std::string& k : keys) {
+            const ParamDef* d = findParam(k);
+            QVERIFY2(d && d->fit.valid() && d->fit.lower < d->fit.upper, k.c_str());
+        }
+        const std::set<std::string> set(keys.begin(), keys.end());
+        for (const char* k : {"k", "m", "c", "tN", "mu", "eta", "Dc"}) QVERIFY2(set.count(k) == 1, k);
+        for (const char* k : {"dt", "cycles", "A", "f", "phase"}) QVERIFY2(set.count(k) == 0, k);
+    }
+
+    // harmonicRunSteps = (transient + cycles)·T/dt: 140 cycles of 10 000 steps for fig22, 20 for
+    // the default; a run without a transient takes that many steps, and a step budget below it
+    // refuses the run before the first step.
+    void harmonicRunStepsIsCyclesTimesStepsPerPeriod() {
+        Preset fig22;
+        QVERIFY(findPreset("fig22", fig22));
+        QVERIFY(std::abs(harmonicRunSteps(fig22.params) - 140 * 10000.0) < 1e-6);
+        SimParams p = fig20Params();
+        QVERIFY(std::abs(harmonicRunSteps(p) - 20 * 10000.0) < 1e-6);
+        p.drive.frequency_Hz = 5.0;  // T = 0.2 s
+        p.integration.dt_s = 1e-4;
+        p.transientCycles = 2.5;
+        p.cycles = 1.5;
+        QVERIFY(std::abs(harmonicRunSteps(p) - 8000.0) < 1e-6);
+        p = fig20Params();
+        p.cycles = 2;
+        const RunResult r = simulate(p);
+        QVERIFY2(r.ok(), r.message.c_str());
+        QCOMPARE(r.stats.steps, std::lround(harmonicRunSteps(p)));
+        p.integration.maxSteps = 19999;
+        const RunResult refused = simulate(p);
+        QVERIFY(refused.status == RunStatus::Failed && refused.samples.empty());
+        QVERIFY2(refused.message.rfind("step budget exceeded: the run needs 20000 steps", 0) == 0, refused.message.c_str());
+    }
+
+    // paramKeysFor(law): the drive and rig keys first, the integration keys last, and between them
+    // exactly the law's own keys (each law its own); every key is settable and reads back with
+    // the law selected.
+    void paramKeysForEachLaw() {
+        const std::vector<std::string> head = {"A", "f", "phase", "tN", "k", "m", "c"};
+        const std::vector<std::string> tail = {"dt", "output_every", "cycles", "transient"};
+        const std::map<LawKind, std::set<std::string>> lawKeys = {
+            {LawKind::RateState, {"mu", "eta", "Dc", "C1", "r", "vc", "epsT"}},
+            {LawKind::Coulomb, {"mu", "epsT"}},
+            {static_cast<LawKind>(lawIndex<DieterichRuinaLaw>(RegisteredLaws{})), {"mu", "a", "b", "Dc", "V0", "epsT"}},
+        };
+        QCOMPARE(lawKeys.size(), size_t(lawCount()));
+        for (const auto& [law, own] : lawKeys) {
+            const std::vector<std::string> keys = paramKeysFor(law);
+            QVERIFY2(keys.size() == head.size() + own.size() + tail.size(), toString(law));
+            QVERIFY(std::equal(head.begin(), head.end(), keys.begin()));
+            QVERIFY(std::equal(tail.begin(), tail.end(), keys.end() - long(tail.size())));
+            const std::set<std::string> middle(keys.begin() + long(head.size()), keys.end() - long(tail.size()));
+            QVERIFY2(middle == own, toString(law));
+            double x = 0.75;
+            for (const std::string& k : keys) {
+                SimParams p;
+                p.law = law;
+                std::string err;
+                QVERIFY2(setParam(p, k, x, &err), err.c_str());
+                double back = 0;
+                QVERIFY(getParam(p, k, back));
+                QCOMPARE(back, x);
+                x += 0.25;
+            }
+        }
+        // Rate-state and Coulomb differ, so the list is not the full key list.
+        QVERIFY(paramKeysFor(LawKind::Coulomb) != paramKeysFor(LawKind::RateState));
+        QVERIFY(paramKeysFor(LawKind::RateState).size() < paramKeys().size());
+    }
+
+    // The law registry (friction_law.hpp, law_list.hpp): one entry per RegisteredLaws type, in
+    // LawKind order (lawIndex), with the law's key, label and viscous flag; makeLaw builds the
+    // variant alternative of that index; lawMu/lawEpsT read the selected law's μ and ε_T.
+    void lawRegistryInLawKindOrder() {
+        static_assert(lawIndex<RateStateLaw>(RegisteredLaws{}) == 0 && lawIndex<CoulombLaw>(RegisteredLaws{}) == 1);
+        static_assert(lawIndex<DieterichRuinaLaw>(RegisteredLaws{}) == 2);
+        static_assert(lawIndex<int>(RegisteredLaws{}) == -1);  // not registered
+        // lawKindOf: a law type's kind, the same index (used where a law's type is known).
+        static_assert(lawKindOf<RateStateLaw>() == LawKind::RateState && lawKindOf<CoulombLaw>() == LawKind::Coulomb);
+        static_assert(static_cast<int>(lawKindOf<DieterichRuinaLaw>()) == lawIndex<DieterichRuinaLaw>(RegisteredLaws{}));
+        QCOMPARE(lawCount(), 3);
+        QCOMPARE(lawCount(), RegisteredLaws::size);
+        QCOMPARE(lawRegistry().size(), size_t(lawCount()));
+        QCOMPARE(allLaws().size(), size_t(lawCount()));
+        const struct {
+            const char* key;
+            const char* label;
+            bool viscous;
+        } expected[] = {{RateStateLaw::kKey, RateStateLaw::kLabel, true},
+                        {CoulombLaw::kKey, CoulombLaw::kLabel, false},
+                        {DieterichRuinaLaw::kKey, DieterichRuinaLaw::kLabel, true}};
+        QCOMPARE(std::string(expected[0].key), std::string("rate-state"));
+        QCOMPARE(std::string(expected[1].key), std::string("coulomb"));
+        for (int i = 0; i < lawCount(); ++i) {
+            const LawInfo& info = lawRegistry()[size_t(i)];
+            QCOMPARE(static_cast<int>(info.kind), i);
+            QCOMPARE(std::string(info.key), std::string(expected[i].key));
+            QCOMPARE(std::string(info.label), std::string(expected[i].label));
+            QCOMPARE(info.viscous, expected[i].viscous);
+            QCOMPARE(&lawInfo(info.kind), &info);
+            QVERIFY(allLaws()[size_t(i)] == info.kind);
+            SimParams p;
+            p.law = info.kind;
+            QCOMPARE(int(makeLaw(p).index()), i);
+        }
+        QCOMPARE(&lawInfo(static_cast<LawKind>(lawCount())), &lawRegistry().front());  // unknown kind: the first
+        QCOMPARE(&lawInfo(static_cast<LawKind>(-1)), &lawRegistry().front());
+        // Each law its own μ and ε_T: the selected one is read.
+        SimParams p;
+        p.lawParams<RateStateParams>().mu = 0.31;
+        p.lawParams<RateStateParams>().epsT_N_per_m = 2e5;
+        p.lawParams<CoulombParams>().mu = 0.42;
+        p.lawParams<CoulombParams>().epsT_N_per_m = 3e5;
+        p.lawParams<DieterichRuinaParams>().mu = 0.53;
+        p.lawParams<DieterichRuinaParams>().epsT_N_per_m = 4e5;
+        const double mu[] = {0.31, 0.42, 0.53}, epsT[] = {2e5, 3e5, 4e5};
+        for (int i = 0; i < lawCount(); ++i) {
+            p.law = static_cast<LawKind>(i);
+            QCOMPARE(lawMu(p), mu[i]);
+            QCOMPARE(lawEpsT(p), epsT[i]);
+            QCOMPARE(lawEpsT(p), std::visit([](const auto& l) { return l.epsT(); }, makeLaw(p)));
+        }
+        QVERIFY(setParam(p, "epsT", 7e5));  // written to every law
+        for (LawKind law : allLaws()) {
+            p.law = law;
+            QCOMPARE(lawEpsT(p), 7e5);
+        }
     }
 
     void derived() {

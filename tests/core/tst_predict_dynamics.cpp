@@ -9,10 +9,12 @@
 // Segments start where the slider slips (PredictSettings::slipStartFraction, default 0.5) and the
 // stage is interpolated by cubic Hermite (Catmull–Rom) on the integration grid. The measured
 // initial x, ẋ of a segment have errors of their own: fitInitialState (default on) profiles them out.
+// The run's score (scoreRun) combines the force and slider channels.
 #include <QtTest>
 
 #include <cmath>
 
+#include "core/identify/fit.hpp"
 #include "core/identify/predict.hpp"
 #include "core/integrate/simulate.hpp"
 
@@ -187,6 +189,38 @@ private slots:
         QVERIFY2(eXf < 5e-3 && eFf < 5e-3, qPrintable(QString("fitted: F %1, x %2").arg(eFf).arg(eXf)));
         ps.initialStateIterations = 0;
         QVERIFY(!ps.validate().empty());
+    }
+
+    // scoreRun in the dynamics set-up (fit.hpp): each channel's NRMSE over the predicted samples
+    // (RMS error / RMS of the record there), combined as sqrt((NRMSE_F² + NRMSE_x²)/2), and the
+    // slider's RMS error in metres; small at the true parameters, larger for another μ.
+    void scoreRunCombinesForceAndSliderChannels() {
+        const SimParams p = truth();
+        const Record rec = record(p);
+        PredictSettings ps;
+        ps.fitInitialState = false;
+        Prediction pr;
+        const RunScore sc = scoreRun(rec.run, SetupKind::Dynamics, specOf(p), ps, "fit", &pr);
+        QVERIFY2(sc.ok, sc.message.c_str());
+        QCOMPARE(sc.role, std::string("fit"));
+        QCOMPARE(sc.samples, pr.index.size());
+        QCOMPARE(pr.slider_m.size(), pr.index.size());
+        const auto [eF, eX] = nrmse(rec.run, pr);
+        qInfo("scoreRun at the true parameters: force %.3e, slider %.3e, combined %.3e", sc.nrmseForce, sc.nrmseDisp, sc.nrmse);
+        QVERIFY(eF > 0 && eX > 0);  // the relative comparisons below mean something
+        QVERIFY(std::abs(sc.nrmseForce - eF) <= 1e-12 * eF);
+        QVERIFY(std::abs(sc.nrmseDisp - eX) <= 1e-12 * eX);
+        QVERIFY(std::abs(sc.nrmse - std::sqrt(0.5 * (eF * eF + eX * eX))) <= 1e-12 * sc.nrmse);
+        double ex2 = 0;
+        for (size_t k = 0; k < pr.index.size(); ++k)
+            ex2 += std::pow(pr.slider_m[k] - rec.run.run[Signal::SliderDisp][pr.index[k]], 2);
+        QVERIFY(std::abs(sc.rms_m - std::sqrt(ex2 / double(pr.index.size()))) <= 1e-12 * sc.rms_m);
+        QVERIFY(sc.nrmse < 5e-3);
+        ModelSpec other = specOf(p);
+        other.values["mu"] = 0.32;
+        const RunScore worse = scoreRun(rec.run, SetupKind::Dynamics, other, ps, "fit");
+        QVERIFY2(worse.ok, worse.message.c_str());
+        QVERIFY(worse.nrmse > 5 * sc.nrmse);
     }
 
     void rejectsABadSlipStartFraction() {
