@@ -86,6 +86,30 @@ LoopGeometry loopGeometry(const std::vector<Sample>& samples) {
     return g;
 }
 
+// One orientation's loops: `c` (created, refilled, or removed when there are no pieces).
+void fillSetCurve(QwtPlot* plot, PiecewiseCurve*& c, const QString& title, const QVector<QPointF>& pts,
+                  const QVector<QPair<int, int>>& pieces, const QPen& pen, double z) {
+    if (pieces.isEmpty()) {
+        if (c) {
+            c->detach();
+            delete c;
+            c = nullptr;
+        }
+        return;
+    }
+    if (!c) {
+        // Built without a legend entry (the summary box names the orientations).
+        c = new PiecewiseCurve(title);
+        c->setItemAttribute(QwtPlotItem::Legend, false);
+        c->setRenderHint(QwtPlotItem::RenderAntialiased, true);
+        c->setZ(z);
+        c->attach(plot);
+    }
+    c->setPen(pen);
+    c->setSamples(pts);
+    c->setPieces(pieces);
+}
+
 }  // namespace
 
 FrictionLoopPlot::FrictionLoopPlot(QWidget* parent) : PlotWidget(parent) {
@@ -155,26 +179,10 @@ void FrictionLoopPlot::setRun(const RunResult& run, LawKind law) {
     bg->setSamples(all);
     bg->setPieces(greyPieces);
     const QColor colour[3] = {style::clockwise(), style::counterClockwise(), QColor(120, 120, 120)};
-    for (int o = 0; o < 3; ++o) {
-        if (setPieces[o].isEmpty()) {
-            if (sets[o]) {
-                sets[o]->detach();
-                delete sets[o];
-            }
-            continue;
-        }
-        if (!sets[o]) {
-            // Built without a legend entry (the summary box names the orientations).
-            sets[o] = new PiecewiseCurve(setTitle[o]);
-            sets[o]->setItemAttribute(QwtPlotItem::Legend, false);
-            sets[o]->setRenderHint(QwtPlotItem::RenderAntialiased, true);
-            sets[o]->setZ(o == 0 ? 21 : 20);   // clockwise on top: not hidden under the others
-            sets[o]->attach(plot_);
-        }
-        sets[o]->setPen(QPen(colour[o], style::kModelLineWidth, style::modelPenStyle(law)));
-        sets[o]->setSamples(setPts[o]);
-        sets[o]->setPieces(setPieces[o]);
-    }
+    for (int o = 0; o < 3; ++o)
+        // Clockwise on top: not hidden under the others.
+        fillSetCurve(plot_, sets[o], setTitle[o], setPts[o], setPieces[o],
+                     QPen(colour[o], style::kModelLineWidth, style::modelPenStyle(law)), o == 0 ? 21 : 20);
     updateSummary();
     rescale();
 }

@@ -286,6 +286,59 @@ double FitResult::stderrOf(const std::string& name) const {
     return std::numeric_limits<double>::quiet_NaN();
 }
 
+namespace {
+
+// The multistart's outcome: the lowest-cost start (bestZ empty when none was usable).
+struct BestStart {
+    double cost = std::numeric_limits<double>::infinity();
+    std::vector<double> z;
+    ceres::Solver::Summary summary;
+    bool cancelled = false;
+    std::string lastFailure;
+};
+
+// Starts 0, 1, … (start 0 from the given values after the scans, the others random), each
+// solved to its end; stops early once FitProblem::agreeingStarts ended at the best cost. Fills
+// res's per-start fields (startsTried, startCosts, bestStart, stoppedEarly) and perStart.
+BestStart runStarts(const FitProblem& prob, const Mapping& map, PointEvaluator& evaluator, FitResult& res,
+                    std::ostringstream& perStart) {
+    std::mt19937_64 rng(prob.seed);
+    std::uniform_real_distribution<double> uni(0.1, 0.9);  // random starts stay off the bounds
+    BestStart best;
+    for (int s = 0; s < prob.multistarts && !best.cancelled; ++s) {
+        std::vector<double> z = startPoint(prob, map, evaluator, s, rng, uni, perStart);
+        if (s == 0) z = scannedPoint(prob, map, evaluator, std::move(z), perStart);
+        const ceres::Solver::Summary summary = solveFrom(prob, map, evaluator, z, s);
+        ++res.startsTried;
+        if (prob.cancel && prob.cancel->load(std::memory_order_relaxed)) best.cancelled = true;
+        const bool usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
+        res.startCosts.push_back(usable ? summary.final_cost : std::numeric_limits<double>::quiet_NaN());
+        perStart << "start " << s << ": " << (usable ? "cost " + fmt(summary.final_cost) : "failed: " + summary.message)
+                 << ", " << summary.iterations.size() << " iterations, " << ceres::TerminationTypeToString(summary.termination_type)
+                 << "\n";
+        if (!usable) { best.lastFailure = summary.message; continue; }
+        if (summary.final_cost < best.cost) {
+            best.cost = summary.final_cost;
+            best.z = z;
+            best.summary = summary;
+            res.bestStart = s;
+        }
+        // Early stop: enough starts ended at the best cost found so far (none lower).
+        if (prob.agreeingStarts >= 2 && s + 1 < prob.multistarts) {
+            const int same = startsAtCost(prob, res.startCosts, best.cost);
+            if (same >= prob.agreeingStarts) {
+                res.stoppedEarly = true;
+                perStart << "stopped after " << (s + 1) << " of " << prob.multistarts << " starts: " << same
+                         << " ended at the same cost (within " << fmt(prob.sameCostTolerance) << " relative)\n";
+                break;
+            }
+        }
+    }
+    return best;
+}
+
+}  // namespace
+
 FitResult fitLeastSquares(const FitProblem& prob) {
     const auto t0 = std::chrono::steady_clock::now();
     FitResult res;
@@ -311,59 +364,22 @@ FitResult fitLeastSquares(const FitProblem& prob) {
         }
     const size_t p = map.freeIdx.size();
 
-    std::mt19937_64 rng(prob.seed);
-    std::uniform_real_distribution<double> uni(0.1, 0.9);  // random starts stay off the bounds
-
-    double bestCost = std::numeric_limits<double>::infinity();
-    std::vector<double> bestZ;
-    ceres::Solver::Summary bestSummary;
-    std::ostringstream perStart;
-    bool cancelled = false;
-    std::string lastFailure;
-
     // Remembers the last few points (a Jacobian's 2p + 1 and a line search's trial points).
     PointEvaluator evaluator(map, res.residualEvaluations, 4 * p + 4);
-    for (int s = 0; s < prob.multistarts && !cancelled; ++s) {
-        std::vector<double> z = startPoint(prob, map, evaluator, s, rng, uni, perStart);
-        if (s == 0) z = scannedPoint(prob, map, evaluator, std::move(z), perStart);
-        const ceres::Solver::Summary summary = solveFrom(prob, map, evaluator, z, s);
-        ++res.startsTried;
-        if (prob.cancel && prob.cancel->load(std::memory_order_relaxed)) cancelled = true;
-        const bool usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
-        res.startCosts.push_back(usable ? summary.final_cost : std::numeric_limits<double>::quiet_NaN());
-        perStart << "start " << s << ": " << (usable ? "cost " + fmt(summary.final_cost) : "failed: " + summary.message)
-                 << ", " << summary.iterations.size() << " iterations, " << ceres::TerminationTypeToString(summary.termination_type)
-                 << "\n";
-        if (!usable) { lastFailure = summary.message; continue; }
-        if (summary.final_cost < bestCost) {
-            bestCost = summary.final_cost;
-            bestZ = z;
-            bestSummary = summary;
-            res.bestStart = s;
-        }
-        // Early stop: enough starts ended at the best cost found so far (none lower).
-        if (prob.agreeingStarts >= 2 && s + 1 < prob.multistarts) {
-            const int same = startsAtCost(prob, res.startCosts, bestCost);
-            if (same >= prob.agreeingStarts) {
-                res.stoppedEarly = true;
-                perStart << "stopped after " << (s + 1) << " of " << prob.multistarts << " starts: " << same
-                         << " ended at the same cost (within " << fmt(prob.sameCostTolerance) << " relative)\n";
-                break;
-            }
-        }
-    }
+    std::ostringstream perStart;
+    const BestStart best = runStarts(prob, map, evaluator, res, perStart);
     res.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (bestZ.empty()) {
-        res.status = cancelled ? FitStatus::Cancelled : FitStatus::Failed;
-        res.message = cancelled ? "cancelled" : "no start gave a usable solution: " + lastFailure;
+    if (best.z.empty()) {
+        res.status = best.cancelled ? FitStatus::Cancelled : FitStatus::Failed;
+        res.message = best.cancelled ? "cancelled" : "no start gave a usable solution: " + best.lastFailure;
         res.solverSummary = perStart.str();
         return res;
     }
-    res.converged = bestSummary.termination_type == ceres::CONVERGENCE;
-    res.solverSummary = bestSummary.BriefReport() + "\n" + perStart.str();
-    if (!finishAtOptimum(prob, map, evaluator, bestZ, bestCost, res)) return res;
-    res.status = cancelled ? FitStatus::Cancelled : FitStatus::Ok;
-    if (cancelled) res.message = "cancelled (best result so far)";
+    res.converged = best.summary.termination_type == ceres::CONVERGENCE;
+    res.solverSummary = best.summary.BriefReport() + "\n" + perStart.str();
+    if (!finishAtOptimum(prob, map, evaluator, best.z, best.cost, res)) return res;
+    res.status = best.cancelled ? FitStatus::Cancelled : FitStatus::Ok;
+    if (best.cancelled) res.message = "cancelled (best result so far)";
     res.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return res;
 }

@@ -14,19 +14,15 @@ namespace stickslip::identify {
 
 namespace detail {
 
-bool fillUncertainty(const FitProblem& prob, const Mapping& map, PointEvaluator& evaluator, const std::vector<double>& bestZ,
-                     double bestCost, FitResult& res) {
+namespace {
+
+// The plain Jacobian at the optimum in internal coordinates, by central differences (one-sided
+// against a bound): the 2p displaced points are computed together (in parallel when the
+// problem can). False (status set) when a parameter cannot be displaced at all.
+bool jacobianAtOptimum(const FitProblem& prob, const Mapping& map, PointEvaluator& evaluator, const std::vector<double>& bestZ,
+                       const PointEvaluator::Result& base, FitResult& res, Eigen::MatrixXd& J) {
     const size_t p = map.freeIdx.size();
     const size_t m = prob.residualCount;
-    // Plain residuals and Jacobian (no loss) at the optimum, in internal coordinates: the
-    // 2p displaced points are computed together (in parallel when the problem can).
-    const PointEvaluator::Ptr base = evaluator.evaluate({bestZ}).front();
-    if (!base->ok) {
-        res.status = FitStatus::Failed;
-        res.message = "model cannot be evaluated at the optimum";
-        return false;
-    }
-    const std::vector<double>& r0 = base->r;
     std::vector<std::vector<double>> displaced;
     std::vector<double> hPlus(p), hMinus(p);
     for (size_t k = 0; k < p; ++k) {
@@ -43,13 +39,13 @@ bool fillUncertainty(const FitProblem& prob, const Mapping& map, PointEvaluator&
         displaced.push_back(hm > 0 ? zminus : bestZ);
     }
     const std::vector<PointEvaluator::Ptr> rd = evaluator.evaluate(displaced);
-    Eigen::MatrixXd J(m, p);
+    J.resize(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(p));
     for (size_t k = 0; k < p; ++k) {
         // A side where the model cannot be evaluated (the edge of a feasible region that is not
         // a box in these coordinates, e.g. curve_coordinates.hpp) is replaced by the optimum:
         // a one-sided difference there.
-        const PointEvaluator::Result& rp = rd[2 * k]->ok ? *rd[2 * k] : *base;
-        const PointEvaluator::Result& rm = rd[2 * k + 1]->ok ? *rd[2 * k + 1] : *base;
+        const PointEvaluator::Result& rp = rd[2 * k]->ok ? *rd[2 * k] : base;
+        const PointEvaluator::Result& rm = rd[2 * k + 1]->ok ? *rd[2 * k + 1] : base;
         const double span = (rd[2 * k]->ok ? hPlus[k] : 0.0) + (rd[2 * k + 1]->ok ? hMinus[k] : 0.0);
         if (!(span > 0.0)) {
             res.status = FitStatus::Failed;
@@ -59,15 +55,14 @@ bool fillUncertainty(const FitProblem& prob, const Mapping& map, PointEvaluator&
         for (size_t i = 0; i < m; ++i)
             J(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = (rp.r[i] - rm.r[i]) / span;
     }
-    double ss = 0.0;
-    for (double v : r0) ss += v * v;
-    res.rms = std::sqrt(ss / static_cast<double>(m));
-    res.cost = bestCost;
-    // Residual degrees of freedom: the free parameters and any nuisance parameters the callback
-    // profiled out (FitProblem::profiledParameters) each take one.
-    const size_t used = p + prob.profiledParameters;
-    const double sigma2 = ss / static_cast<double>(m > used ? m - used : 1);
+    return true;
+}
 
+// Identifiability (cond of the unit-diagonal scaled JᵀJ), and for an identifiable fit the
+// standard errors and correlations in physical units (header comment).
+void fillCovariance(const FitProblem& prob, const Mapping& map, const std::vector<double>& bestZ, const Eigen::MatrixXd& J,
+                    double sigma2, FitResult& res) {
+    const size_t p = map.freeIdx.size();
     const Eigen::MatrixXd JtJ = J.transpose() * J;
     Eigen::VectorXd d = JtJ.diagonal();
     std::vector<std::string> dead;
@@ -125,6 +120,34 @@ bool fillUncertainty(const FitProblem& prob, const Mapping& map, PointEvaluator&
     }
     if (!res.identifiable)
         for (size_t k = 0; k < p; ++k) res.stderrs[map.freeIdx[k]] = std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+bool fillUncertainty(const FitProblem& prob, const Mapping& map, PointEvaluator& evaluator, const std::vector<double>& bestZ,
+                     double bestCost, FitResult& res) {
+    const size_t p = map.freeIdx.size();
+    const size_t m = prob.residualCount;
+    // Plain residuals and Jacobian (no loss) at the optimum, in internal coordinates.
+    const PointEvaluator::Ptr base = evaluator.evaluate({bestZ}).front();
+    if (!base->ok) {
+        res.status = FitStatus::Failed;
+        res.message = "model cannot be evaluated at the optimum";
+        return false;
+    }
+    const std::vector<double>& r0 = base->r;
+    Eigen::MatrixXd J;
+    if (!jacobianAtOptimum(prob, map, evaluator, bestZ, *base, res, J)) return false;
+    double ss = 0.0;
+    for (double v : r0) ss += v * v;
+    res.rms = std::sqrt(ss / static_cast<double>(m));
+    res.cost = bestCost;
+    // Residual degrees of freedom: the free parameters and any nuisance parameters the callback
+    // profiled out (FitProblem::profiledParameters) each take one.
+    const size_t used = p + prob.profiledParameters;
+    const double sigma2 = ss / static_cast<double>(m > used ? m - used : 1);
+
+    fillCovariance(prob, map, bestZ, J, sigma2, res);
     return true;
 }
 

@@ -413,6 +413,35 @@ void finishReport(Loop& L) {
     }
 }
 
+// How the runs were prepared and fitted, as the report states it.
+void describeSetup(const Context& cx, const IdentifyOptions& opt, int decimation, IdentifyResult& res) {
+    res.decimation = decimation;
+    res.jacobian = opt.forwardJacobian ? "forward" : "central";
+    res.stateStep = opt.exactStateStep ? "constant_rate" : "backward_euler";
+    // What the runs were prepared with (prepareContext decides per run), not a second rule.
+    res.lawInput = std::any_of(cx.runs.begin(), cx.runs.end(), [](const Prepared& p) { return !p.stepSlip.empty(); })
+                       ? "recorded_slip"
+                       : "linear";
+    res.setup = cx.anyDynamics ? "dynamics" : "prescribed";
+    res.coordinates = opt.curveCoordinates ? "steady_state_curve" : "law";
+}
+
+// The candidates: the options' list or else the whole catalogue; false (message set) for a name
+// the catalogue does not have.
+bool candidateList(const IdentifyOptions& opt, std::vector<std::string>& cands, std::string& message) {
+    cands = opt.candidates;
+    if (cands.empty())
+        for (const EffectInfo& e : effectCatalogue()) cands.push_back(e.name);
+    for (const std::string& c : cands) {
+        EffectInfo info;
+        if (!findEffect(c, info)) {
+            message = "unknown effect '" + c + "'";
+            return false;
+        }
+    }
+    return true;
+}
+
 }  // namespace
 
 IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOptions& opt) {
@@ -430,15 +459,7 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
             res.message = why;
             return res;
         }
-        res.decimation = dec;
-        res.jacobian = opt.forwardJacobian ? "forward" : "central";
-        res.stateStep = opt.exactStateStep ? "constant_rate" : "backward_euler";
-        // What the runs were prepared with (prepareContext decides per run), not a second rule.
-        res.lawInput = std::any_of(cx.runs.begin(), cx.runs.end(), [](const Prepared& p) { return !p.stepSlip.empty(); })
-                           ? "recorded_slip"
-                           : "linear";
-        res.setup = cx.anyDynamics ? "dynamics" : "prescribed";
-        res.coordinates = opt.curveCoordinates ? "steady_state_curve" : "law";
+        describeSetup(cx, opt, dec, res);
     }
     Loop L(cx, opt, res);
     for (size_t i = 0; i < runs.size(); ++i) (runs[i].validation ? L.valIdx : L.fitIdx).push_back(i);
@@ -446,16 +467,8 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         res.message = "every run is a validation run: nothing to fit";
         return res;
     }
-    std::vector<std::string> cands = opt.candidates;
-    if (cands.empty())
-        for (const EffectInfo& e : effectCatalogue()) cands.push_back(e.name);
-    for (const std::string& c : cands) {
-        EffectInfo info;
-        if (!findEffect(c, info)) {
-            res.message = "unknown effect '" + c + "'";
-            return res;
-        }
-    }
+    std::vector<std::string> cands;
+    if (!candidateList(opt, cands, res.message)) return res;
     L.episodes = slipEpisodes(cx, L.fitIdx, opt.stickVelocity_mps);
     res.slipEpisodes = L.episodes;
     res.heldOutAlpha = opt.heldOutAlpha;

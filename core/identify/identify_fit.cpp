@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -66,77 +67,31 @@ std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const 
     return ps;
 }
 
-// One fit (fitSpec); `curveAllowed`: whether it may move in the curve coordinates, `usedCurve`
-// is set to whether it did.
-static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
-                            const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
-                            FitOutput output, bool curveAllowed, bool& usedCurve) {
-    FitOutcome out;
-    FitProblem prob;
-    prob.parameters = parameters(cx, spec, start);
-    // Baseline: the contact stiffness and the state distance set where the force turns after a
-    // reversal and how fast it settles; their costs have narrow valleys a local solver does not
-    // leave, so each is scanned on a log grid over its physical bounds first (fit.hpp).
-    if (scanStiffness)
-        for (const FitParameter& fp : prob.parameters) {
-            if (!fp.free || (fp.name != "epsT" && fp.name != "Dc")) continue;
-            const double lo = fp.name == "epsT" ? std::max(fp.lower, 1e3) : std::max(fp.lower, 1e-7);
-            const double hi = fp.name == "epsT" ? std::min(fp.upper, 1e8) : std::min(fp.upper, 1e-2);
-            const int nGrid = fp.name == "epsT" ? 26 : 11;
-            ParameterScan sc{fp.name, {}};
-            for (int k = 0; k < nGrid; ++k) sc.values.push_back(lo * std::pow(hi / lo, k / (nGrid - 1.0)));
-            prob.scans.push_back(sc);
-        }
-    // Warm-started fits move in the steady-state curve's coordinates (κ = C1/v_c², s = η −
-    // C1/v_c; curve_coordinates.hpp), as `fit --setup dynamics` does: in C1, η, v_c the cost has
-    // a long curved valley along which the solver crawls to its iteration cap. In both set-ups:
-    // the valley is the steady-state curve's, whichever way the slip is imposed (the damper's
-    // leave-one-run-out refits reached the cap 26 times in 48 in C1, η, v_c; 11 in κ, s, v_c).
-    // Only from a start CurveCoordinates::startInside accepts (its header says why).
-    CurveCoordinates curve;
-    if (curveAllowed && !scanStiffness && CurveCoordinates::startInside(prob.parameters))
-        curve = CurveCoordinates::install(prob.parameters, prob.scans);
-    usedCurve = curve.active();
-    prob.residualCount = residualCount(cx, idx);
-    prob.multistarts = multistarts;
-    prob.seed = cx.opt->seed;
-    prob.cancel = cx.opt->cancel;
-    // Warm-started refits (a candidate on top of the current model, a leave-one-run-out fit)
-    // start next to their optimum: 20 iterations. The cost tolerance 1e-6 is far below what the
-    // selection resolves (the noise null's quantile is ~1e-4 of the cost on the synthetic sets).
-    prob.maxIterations = scanStiffness ? 40 : 20;
-    prob.functionTolerance = 1e-6;
-    prob.parameterTolerance = 1e-6;
-    prob.jacobian = cx.opt->forwardJacobian && from == FitStart::Far ? JacobianKind::Forward : JacobianKind::Central;
-    prob.uncertainty = output == FitOutput::Full;
-    const auto names = [&] {
-        std::vector<std::string> v;
-        for (const auto& p : prob.parameters) v.push_back(p.name);
-        return v;
-    }();
-    // The law's values of a point in the solver's coordinates; false outside C1's or η's bounds
-    // (the box in κ, s, v_c is not the box in C1, η, v_c).
-    const auto lawValues = [names, curve](const std::vector<double>& pv, std::map<std::string, double>& vals) {
-        vals.clear();
-        for (size_t i = 0; i < names.size(); ++i) vals[names[i]] = pv[i];
-        if (!curve.active()) return true;
-        curve.toLaw(pv, vals);
-        return curve.withinLawBounds(vals);
-    };
-    prob.residuals = [&cx, &spec, &idx, lawValues](const std::vector<double>& pv, std::vector<double>& r) {
-        std::map<std::string, double> vals;
-        if (!lawValues(pv, vals)) return false;
-        double mass = kNaN;
-        const ExtendedModel m = buildModel(cx, spec, vals, mass);
-        r.clear();
-        for (size_t i : idx) {
-            double ss = 0, n = 0;
-            if (!runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments)) return false;
-        }
-        return true;
-    };
-    // The 2p points of a numeric Jacobian as (point, run) tasks over the cores; each task writes
-    // its own slice, so the result does not depend on the scheduling.
+// The baseline's scans: the contact stiffness and the state distance set where the force turns
+// after a reversal and how fast it settles; their costs have narrow valleys a local solver does
+// not leave, so each is scanned on a log grid over its physical bounds first (fit.hpp).
+static std::vector<ParameterScan> stiffnessScans(const std::vector<FitParameter>& params) {
+    std::vector<ParameterScan> scans;
+    for (const FitParameter& fp : params) {
+        if (!fp.free || (fp.name != "epsT" && fp.name != "Dc")) continue;
+        const double lo = fp.name == "epsT" ? std::max(fp.lower, 1e3) : std::max(fp.lower, 1e-7);
+        const double hi = fp.name == "epsT" ? std::min(fp.upper, 1e8) : std::min(fp.upper, 1e-2);
+        const int nGrid = fp.name == "epsT" ? 26 : 11;
+        ParameterScan sc{fp.name, {}};
+        for (int k = 0; k < nGrid; ++k) sc.values.push_back(lo * std::pow(hi / lo, k / (nGrid - 1.0)));
+        scans.push_back(sc);
+    }
+    return scans;
+}
+
+// The law's values of a point in the solver's coordinates; false outside C1's or η's bounds
+// (the box in κ, s, v_c is not the box in C1, η, v_c).
+using LawValues = std::function<bool(const std::vector<double>&, std::map<std::string, double>&)>;
+
+// The 2p points of a numeric Jacobian as (point, run) tasks over the cores; each task writes
+// its own slice, so the result does not depend on the scheduling.
+static BatchResidualFunction batchResiduals(const Context& cx, const Spec& spec, const std::vector<size_t>& idx,
+                                                  const std::vector<std::string>& names, const LawValues& lawValues) {
     std::vector<size_t> offsets;
     {
         size_t o = 0;
@@ -145,9 +100,9 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
             o += cx.runs[i].size() * (cx.runs[i].run->setup == SetupKind::Dynamics ? 2 : 1);
         }
     }
-    prob.batchResiduals = [&cx, &spec, &idx, names, offsets, lawValues](const std::vector<std::vector<double>>& points,
-                                                                        std::vector<std::vector<double>>& rs,
-                                                                        std::vector<char>& okOut) {
+    return [&cx = cx, &spec = spec, &idx = idx, names, offsets, lawValues](const std::vector<std::vector<double>>& points,
+                                                                         std::vector<std::vector<double>>& rs,
+                                                                         std::vector<char>& okOut) {
         const size_t nRuns = idx.size(), nTasks = points.size() * nRuns;
         std::vector<ExtendedModel> models(points.size());
         std::vector<double> masses(points.size(), kNaN);
@@ -203,12 +158,14 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
         for (size_t t = 0; t < nTasks; ++t)
             if (!ok[t]) okOut[t / nRuns] = 0;
     };
-    ++fits;
-    out.fit = fitLeastSquares(prob);
-    if (!out.fit.ok()) {
-        out.message = out.fit.message;
-        return out;
-    }
+}
+
+// The outcome of a finished fit: its values and estimates in the law's coordinates and, for
+// FitOutput::Full, its residual sum of squares over the fitted runs.
+static FitOutcome outcomeOf(const Context& cx, const Spec& spec, const std::vector<size_t>& idx, FitResult fit,
+                            const CurveCoordinates& curve, FitOutput output) {
+    FitOutcome out;
+    out.fit = std::move(fit);
     if (curve.active()) curve.restore(out.fit);
     out.ok = true;
     for (size_t i = 0; i < out.fit.names.size(); ++i) {
@@ -232,6 +189,73 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
         out.count += n;
     }
     return out;
+}
+
+// One fit (fitSpec); `curveAllowed`: whether it may move in the curve coordinates, `usedCurve`
+// is set to whether it did.
+static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
+                            const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
+                            FitOutput output, bool curveAllowed, bool& usedCurve) {
+    FitProblem prob;
+    prob.parameters = parameters(cx, spec, start);
+    // Baseline: scans of ε_T and D_c first (stiffnessScans).
+    if (scanStiffness) prob.scans = stiffnessScans(prob.parameters);
+    // Warm-started fits move in the steady-state curve's coordinates (κ = C1/v_c², s = η −
+    // C1/v_c; curve_coordinates.hpp), as `fit --setup dynamics` does: in C1, η, v_c the cost has
+    // a long curved valley along which the solver crawls to its iteration cap. In both set-ups:
+    // the valley is the steady-state curve's, whichever way the slip is imposed (the damper's
+    // leave-one-run-out refits reached the cap 26 times in 48 in C1, η, v_c; 11 in κ, s, v_c).
+    // Only from a start CurveCoordinates::startInside accepts (its header says why).
+    CurveCoordinates curve;
+    if (curveAllowed && !scanStiffness && CurveCoordinates::startInside(prob.parameters))
+        curve = CurveCoordinates::install(prob.parameters, prob.scans);
+    usedCurve = curve.active();
+    prob.residualCount = residualCount(cx, idx);
+    prob.multistarts = multistarts;
+    prob.seed = cx.opt->seed;
+    prob.cancel = cx.opt->cancel;
+    // Warm-started refits (a candidate on top of the current model, a leave-one-run-out fit)
+    // start next to their optimum: 20 iterations. The cost tolerance 1e-6 is far below what the
+    // selection resolves (the noise null's quantile is ~1e-4 of the cost on the synthetic sets).
+    prob.maxIterations = scanStiffness ? 40 : 20;
+    prob.functionTolerance = 1e-6;
+    prob.parameterTolerance = 1e-6;
+    prob.jacobian = cx.opt->forwardJacobian && from == FitStart::Far ? JacobianKind::Forward : JacobianKind::Central;
+    prob.uncertainty = output == FitOutput::Full;
+    const auto names = [&] {
+        std::vector<std::string> v;
+        for (const auto& p : prob.parameters) v.push_back(p.name);
+        return v;
+    }();
+    const LawValues lawValues = [names, curve](const std::vector<double>& pv, std::map<std::string, double>& vals) {
+        vals.clear();
+        for (size_t i = 0; i < names.size(); ++i) vals[names[i]] = pv[i];
+        if (!curve.active()) return true;
+        curve.toLaw(pv, vals);
+        return curve.withinLawBounds(vals);
+    };
+    prob.residuals = [&cx, &spec, &idx, lawValues](const std::vector<double>& pv, std::vector<double>& r) {
+        std::map<std::string, double> vals;
+        if (!lawValues(pv, vals)) return false;
+        double mass = kNaN;
+        const ExtendedModel m = buildModel(cx, spec, vals, mass);
+        r.clear();
+        for (size_t i : idx) {
+            double ss = 0, n = 0;
+            if (!runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments)) return false;
+        }
+        return true;
+    };
+    prob.batchResiduals = batchResiduals(cx, spec, idx, names, lawValues);
+    ++fits;
+    FitResult fit = fitLeastSquares(prob);
+    if (!fit.ok()) {
+        FitOutcome out;
+        out.message = fit.message;
+        out.fit = std::move(fit);
+        return out;
+    }
+    return outcomeOf(cx, spec, idx, std::move(fit), curve, output);
 }
 
 FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,

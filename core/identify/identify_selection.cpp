@@ -84,18 +84,13 @@ void creditRestartGain(CandidateScore& sc, double ssFirst, double ssRefit) {
     if (sc.nullReplicas > 0 && std::isfinite(ssFirst) && std::isfinite(ssRefit)) sc.gain += ssFirst - ssRefit;
 }
 
-// The held-out and identifiability tests of the selection (tests 2 and 3 of the selection rule,
-// IdentifyOptions in identify.hpp).
-// `units`: the runs whose held-out errors are compared (leave-one-run-out: the fit runs;
-// else the validation runs). Fills the candidate's test figures; false with sc.reason set
-// when a test fails.
+namespace {
 
-bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fit, const ModelErrors& ref,
-                     const ModelErrors& with, const std::vector<std::map<std::string, double>>& loo,
-                     const std::vector<size_t>& units, double tauInt) {
-    const IdentifyOptions& opt = *cx.opt;
-    // (2) Held-out error, pooled and paired over runs. No held-out error (every refit without a
-    // run failed) is no evidence: rejected, not waved through.
+// Test (2): the held-out error, pooled and paired over the runs in `units`.
+bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const ModelErrors& ref, const ModelErrors& with,
+                       const std::vector<size_t>& units) {
+    // No held-out error (every refit without a run failed) is no evidence: rejected, not waved
+    // through.
     if (std::isfinite(ref.validationNrmse) && !std::isfinite(with.validationNrmse)) {
         sc.reason = "no held-out error: the refits without each run failed";
         return false;
@@ -145,7 +140,14 @@ bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fi
                     " >= " + std::to_string(opt.heldOutAlpha) + " (mean log MSE ratio " + std::to_string(pt.meanLogRatio) + ")";
         return false;
     }
-    // (3) The size parameter differs from the value at which the effect vanishes by more than
+    return true;
+}
+
+// Test (3): the size parameter is identified away from the value at which the effect vanishes.
+bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit,
+                    const std::vector<std::map<std::string, double>>& loo, double tauInt) {
+    const IdentifyOptions& opt = *cx.opt;
+    // The size parameter differs from the value at which the effect vanishes by more than
     // t_{K−1, 1−α/2} jackknife standard errors over the leave-one-run-out fits.
     EffectInfo info;
     findEffect(sc.name, info);
@@ -187,6 +189,19 @@ bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fi
         return false;
     }
     return true;
+}
+
+}  // namespace
+
+// The held-out and identifiability tests of the selection (tests 2 and 3 of the selection rule,
+// IdentifyOptions in identify.hpp).
+// `units`: the runs whose held-out errors are compared (leave-one-run-out: the fit runs;
+// else the validation runs). Fills the candidate's test figures; false with sc.reason set
+// when a test fails.
+bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fit, const ModelErrors& ref,
+                     const ModelErrors& with, const std::vector<std::map<std::string, double>>& loo,
+                     const std::vector<size_t>& units, double tauInt) {
+    return passesHeldOutTest(*cx.opt, sc, ref, with, units) && passesSizeTest(cx, sc, fit, loo, tauInt);
 }
 
 }  // namespace stickslip::identify::detail
