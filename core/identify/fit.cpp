@@ -288,7 +288,7 @@ double FitResult::stderrOf(const std::string& name) const {
 
 namespace {
 
-// The multistart's outcome: the lowest-cost start (bestZ empty when none was usable).
+// The multistart's outcome: the lowest-cost start (z empty when none was usable).
 struct BestStart {
     double cost = std::numeric_limits<double>::infinity();
     std::vector<double> z;

@@ -146,7 +146,6 @@ bool fillUncertainty(const FitProblem& prob, const Mapping& map, PointEvaluator&
     // profiled out (FitProblem::profiledParameters) each take one.
     const size_t used = p + prob.profiledParameters;
     const double sigma2 = ss / static_cast<double>(m > used ? m - used : 1);
-
     fillCovariance(prob, map, bestZ, J, sigma2, res);
     return true;
 }
