@@ -69,6 +69,52 @@ CleanRun measured(const SimParams& p, uint64_t seed) {
     return c;
 }
 
+// The runs of a dataset through the default preprocessing (which must filter them).
+std::vector<CleanRun> cleanDefault(const io::Dataset& ds) {
+    std::vector<CleanRun> out;
+    for (const io::Run& r : ds.runs) {
+        CleanRun c;
+        std::string why;
+        if (!preprocessRun(r, PreprocessSettings{}, c, &why)) qFatal("%s", why.c_str());
+        if (c.filter.empty()) qFatal("default preprocessing should filter the signals");
+        out.push_back(std::move(c));
+    }
+    return out;
+}
+
+// One fitted parameter against the answer key: z = (fitted - true)/stderr, and whether it ended
+// on one of its bounds (then not asserted).
+struct AnswerCheck {
+    std::string name;
+    double z;
+    bool atBound;
+    double se;
+};
+
+// Every free parameter of `f` against the answer key's baseline_params, each printed with its
+// three standard errors (reported, iid, jackknife).
+std::vector<AnswerCheck> compareWithAnswerKey(const DatasetFit& f, const std::vector<std::string>& free, const nlohmann::json& key) {
+    std::vector<AnswerCheck> checks;
+    for (const std::string& name : free) {
+        const double truth = key["baseline_params"][name].get<double>();
+        const double got = f.fit.value(name), se = f.fit.stderrOf(name);
+        FitParameter fp{"zeta", 0.005, 1e-5, 1.0, true, ParamScale::Log};  // fitDataset's zeta bounds
+        if (name != "zeta" && !defaultParameter(name, SetupKind::Dynamics, fp)) qFatal("no default for %s", name.c_str());
+        const bool atBound = std::abs(got - fp.lower) < 1e-6 * (fp.upper - fp.lower) ||
+                             std::abs(fp.upper - got) < 1e-6 * (fp.upper - fp.lower);
+        double seIid = NAN, seJk = NAN;
+        for (size_t i = 0; i < f.fit.names.size(); ++i)
+            if (f.fit.names[i] == name) {
+                if (i < f.stderrsIid.size()) seIid = f.stderrsIid[i];
+                if (i < f.stderrsJackknife.size()) seJk = f.stderrsJackknife[i];
+            }
+        qInfo("%-5s = %.5g +- %.3g (iid %.3g, jackknife %.3g), answer key %.5g: %.2f stderr%s", name.c_str(), got, se, seIid,
+              seJk, truth, (got - truth) / se, atBound ? " (at a bound: not asserted)" : "");
+        checks.push_back({name, (got - truth) / se, atBound, se});
+    }
+    return checks;
+}
+
 }  // namespace
 
 class TstFitDynamics : public QObject {
@@ -213,18 +259,7 @@ private slots:
         QVERIFY2(io::loadDataset({dir + "D05/run_01.csv", dir + "D05/run_02.csv", dir + "D05/run_03.csv", dir + "D05/run_04.csv"},
                                  opt, fitData, err), err.what().c_str());
         QVERIFY2(io::loadDataset({dir + "D05/run_05.csv"}, opt, valData, err), err.what().c_str());
-        auto clean = [](const io::Dataset& ds) {
-            std::vector<CleanRun> out;
-            for (const io::Run& r : ds.runs) {
-                CleanRun c;
-                std::string why;
-                if (!preprocessRun(r, PreprocessSettings{}, c, &why)) qFatal("%s", why.c_str());
-                if (c.filter.empty()) qFatal("default preprocessing should filter the signals");
-                out.push_back(std::move(c));
-            }
-            return out;
-        };
-        const std::vector<CleanRun> runs = clean(fitData), held = clean(valData);
+        const std::vector<CleanRun> runs = cleanDefault(fitData), held = cleanDefault(valData);
         DatasetFitSettings st;
         st.setup = SetupKind::Dynamics;
         st.law = LawKind::RateState;
@@ -251,27 +286,9 @@ private slots:
         // epsT +0.62, m +0.10, zeta +1.14; relative stderr mu 0.8 %, epsT 0.7 %, m 0.5 %,
         // zeta 11 %, Dc 51 %.
         // Print every parameter first, then assert (a failure must not hide the others).
-        struct Check { std::string name; double z; bool atBound; double se; };
-        std::vector<Check> checks;
-        for (const std::string& name : st.free) {
-            const double truth = key["baseline_params"][name].get<double>();
-            const double got = f.fit.value(name), se = f.fit.stderrOf(name);
-            FitParameter fp{"zeta", 0.005, 1e-5, 1.0, true, ParamScale::Log};  // fitDataset's zeta bounds
-            if (name != "zeta") QVERIFY(defaultParameter(name, SetupKind::Dynamics, fp));
-            const bool atBound = std::abs(got - fp.lower) < 1e-6 * (fp.upper - fp.lower) ||
-                                 std::abs(fp.upper - got) < 1e-6 * (fp.upper - fp.lower);
-            double seIid = NAN, seJk = NAN;
-            for (size_t i = 0; i < f.fit.names.size(); ++i)
-                if (f.fit.names[i] == name) {
-                    if (i < f.stderrsIid.size()) seIid = f.stderrsIid[i];
-                    if (i < f.stderrsJackknife.size()) seJk = f.stderrsJackknife[i];
-                }
-            qInfo("%-5s = %.5g +- %.3g (iid %.3g, jackknife %.3g), answer key %.5g: %.2f stderr%s", name.c_str(), got, se,
-                  seIid, seJk, truth, (got - truth) / se, atBound ? " (at a bound: not asserted)" : "");
-            checks.push_back({name, (got - truth) / se, atBound, se});
-        }
+        const std::vector<AnswerCheck> checks = compareWithAnswerKey(f, st.free, key);
         int asserted = 0;
-        for (const Check& c : checks) {
+        for (const AnswerCheck& c : checks) {
             if (c.atBound) continue;
             QVERIFY(std::isfinite(c.se) && c.se > 0);
             QVERIFY2(std::abs(c.z) <= kFactor, c.name.c_str());

@@ -70,6 +70,52 @@ int rowOf(QTableWidget* t, const QString& first) {
     return -1;
 }
 
+// The panel's before/after table and the baseline's note and bounds line show what the core
+// computed (identifyMatchesCoreAndExports).
+void checkBeforeAfterTable(IdentifyPanel& p, const IdentifyResult& core) {
+    QTableWidget* ba = p.beforeAfterTable();
+    QCOMPARE(ba->rowCount(), 2);
+    QCOMPARE(cell(ba, 0, 1), formatNrmse(core.before.fitNrmse));
+    QCOMPARE(cell(ba, 0, 2), formatNrmse(core.before.validationNrmse));
+    QCOMPARE(cell(ba, 1, 1), formatNrmse(core.after.fitNrmse));
+    QCOMPARE(cell(ba, 1, 2), formatNrmse(core.after.validationNrmse));
+    // The baseline's note in its row's tooltip; a parameter that ended on a bound, and the
+    // verdict of its second start, in the line below the table.
+    QCOMPARE(ba->item(0, 0)->toolTip(), QString::fromStdString(core.baselineNote));
+    const QString bounds = p.baselineBoundsLabel()->text();
+    QCOMPARE(bounds.isEmpty(), core.baselineBounds.empty());
+    for (const BoundVerdict& b : core.baselineBounds) {
+        QVERIFY(bounds.contains(QString::fromStdString(b.name) + (b.solverFailure ? " had stopped" : " ended on its")));
+        QCOMPARE(bounds.contains("refitted there"), b.refitted);
+        QVERIFY(bounds.contains(b.solverFailure ? "a solver failure" : "the data's answer"));
+    }
+    qInfo("baseline bounds: %s", qPrintable(bounds));
+}
+
+// The JSON and HTML reports of the panel's last identify, and a clear error with nothing to export.
+void checkReportExport(IdentifyPanel& p, const IdentifyResult& core) {
+    QTemporaryDir dir;
+    QString why;
+    QVERIFY2(p.exportIdentifyReport(dir.filePath("report.json"), dir.filePath("report.html"), &why), qPrintable(why));
+    QFile f(dir.filePath("report.json"));
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QJsonParseError perr{};
+    const QJsonDocument doc = QJsonDocument::fromJson(f.readAll(), &perr);
+    QVERIFY2(perr.error == QJsonParseError::NoError, qPrintable(perr.errorString()));
+    const QJsonObject j = doc.object();
+    for (const char* key : {"before", "after", "effects_added", "candidates", "unexplained"})
+        QVERIFY2(j.contains(key), key);
+    QCOMPARE(j.value("before").toObject().value("fit_nrmse").toDouble(), core.before.fitNrmse);
+    QFile h(dir.filePath("report.html"));
+    QVERIFY(h.open(QIODevice::ReadOnly));
+    const QByteArray head = h.read(64).trimmed();
+    QVERIFY2(head.startsWith("<!DOCTYPE") || head.startsWith("<html"), head.constData());
+    // Nothing to export yet: a clear error, no file.
+    IdentifyPanel empty;
+    QVERIFY(!empty.exportIdentifyReport(dir.filePath("x.json"), dir.filePath("x.html"), &why));
+    QVERIFY(!QFile::exists(dir.filePath("x.json")));
+}
+
 }  // namespace
 
 class TestIdentifyPanel : public QObject {
@@ -238,23 +284,8 @@ private slots:
         QVERIFY(r.after.validationNrmse == core.after.validationNrmse);
         QCOMPARE(r.effectsAdded.size(), core.effectsAdded.size());
         QCOMPARE(r.unexplained, core.unexplained);
-        QTableWidget* ba = p.beforeAfterTable();
-        QCOMPARE(ba->rowCount(), 2);
-        QCOMPARE(cell(ba, 0, 1), formatNrmse(core.before.fitNrmse));
-        QCOMPARE(cell(ba, 0, 2), formatNrmse(core.before.validationNrmse));
-        QCOMPARE(cell(ba, 1, 1), formatNrmse(core.after.fitNrmse));
-        QCOMPARE(cell(ba, 1, 2), formatNrmse(core.after.validationNrmse));
-        // The baseline's note in its row's tooltip; a parameter that ended on a bound, and the
-        // verdict of its second start, in the line below the table.
-        QCOMPARE(ba->item(0, 0)->toolTip(), QString::fromStdString(core.baselineNote));
-        const QString bounds = p.baselineBoundsLabel()->text();
-        QCOMPARE(bounds.isEmpty(), core.baselineBounds.empty());
-        for (const BoundVerdict& b : core.baselineBounds) {
-            QVERIFY(bounds.contains(QString::fromStdString(b.name) + (b.solverFailure ? " had stopped" : " ended on its")));
-            QCOMPARE(bounds.contains("refitted there"), b.refitted);
-            QVERIFY(bounds.contains(b.solverFailure ? "a solver failure" : "the data's answer"));
-        }
-        qInfo("baseline bounds: %s", qPrintable(bounds));
+        checkBeforeAfterTable(p, core);
+        if (QTest::currentTestFailed()) return;
         if (const QByteArray shot = qgetenv("IDENTIFY_LOOP_SHOT"); !shot.isEmpty()) {
             p.controlTabs()->setCurrentIndex(2);  // Identify
             p.resize(1100, 1300);
@@ -267,26 +298,7 @@ private slots:
         QVERIFY(p.unexplainedLabel()->text().contains(core.unexplained ? "Unexplained" : "No unexplained"));
         QVERIFY(p.overlayPlot()->seriesCount() >= 2);
 
-        QTemporaryDir dir;
-        QString why;
-        QVERIFY2(p.exportIdentifyReport(dir.filePath("report.json"), dir.filePath("report.html"), &why), qPrintable(why));
-        QFile f(dir.filePath("report.json"));
-        QVERIFY(f.open(QIODevice::ReadOnly));
-        QJsonParseError perr{};
-        const QJsonDocument doc = QJsonDocument::fromJson(f.readAll(), &perr);
-        QVERIFY2(perr.error == QJsonParseError::NoError, qPrintable(perr.errorString()));
-        const QJsonObject j = doc.object();
-        for (const char* key : {"before", "after", "effects_added", "candidates", "unexplained"})
-            QVERIFY2(j.contains(key), key);
-        QCOMPARE(j.value("before").toObject().value("fit_nrmse").toDouble(), core.before.fitNrmse);
-        QFile h(dir.filePath("report.html"));
-        QVERIFY(h.open(QIODevice::ReadOnly));
-        const QByteArray head = h.read(64).trimmed();
-        QVERIFY2(head.startsWith("<!DOCTYPE") || head.startsWith("<html"), head.constData());
-        // Nothing to export yet: a clear error, no file.
-        IdentifyPanel empty;
-        QVERIFY(!empty.exportIdentifyReport(dir.filePath("x.json"), dir.filePath("x.html"), &why));
-        QVERIFY(!QFile::exists(dir.filePath("x.json")));
+        checkReportExport(p, core);
     }
 
     // The recovery self-test from the panel: bad levels are refused before any job starts; run
