@@ -2,6 +2,7 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QChildEvent>
 #include <QCloseEvent>
 #include <QDockWidget>
 #include <QDragEnterEvent>
@@ -13,6 +14,7 @@
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
+#include <QTabBar>
 #include <QTimer>
 
 #include "core/io/csv_table.hpp"
@@ -64,6 +66,19 @@ MainWindow::MainWindow(bool restoreSettings, QWidget* parent) : QMainWindow(pare
 }
 
 MainWindow::~MainWindow() = default;
+
+// The tabs of tabified docks (the plot views) keep their whole titles and scroll instead of
+// eliding: seven views share one dock area, and elided titles ("P…") could not tell the
+// Poincaré section from the periodicity map. QMainWindow makes these tab bars itself, and
+// again whenever docks are moved, so each is set up when it is first polished.
+bool MainWindow::event(QEvent* e) {
+    if (e->type() == QEvent::ChildPolished)
+        if (auto* bar = qobject_cast<QTabBar*>(static_cast<QChildEvent*>(e)->child())) {
+            bar->setElideMode(Qt::ElideNone);
+            bar->setUsesScrollButtons(true);
+        }
+    return QMainWindow::event(e);
+}
 
 void MainWindow::buildDocks() {
     auto* scroll = new QScrollArea;

@@ -56,6 +56,7 @@ signals:
     void runShown(const stickslip::gui::RunOutcome& outcome);
 
 protected:
+    bool event(QEvent* e) override;
     void closeEvent(QCloseEvent* e) override;
     void dragEnterEvent(QDragEnterEvent* e) override;
     void dropEvent(QDropEvent* e) override;

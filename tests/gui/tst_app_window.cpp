@@ -10,6 +10,7 @@
 #include <QMimeData>
 #include <QSignalSpy>
 #include <QSlider>
+#include <QTabBar>
 #include <QTemporaryDir>
 #include <QtTest>
 #include <qwt_plot_curve.h>
@@ -64,6 +65,7 @@ QByteArray head(const QString& path, int n) {
 class TstAppWindow : public QObject {
     Q_OBJECT
     MainWindow* w = nullptr;
+    QByteArray layout_;  // the docks as first shown (viewTabsKeepTheirWholeTitles restores it)
 private slots:
     void sessionArgumentIsTakenBeforeQtSeesIt() {
         // QGuiApplication swallows "--session ID" (X11 session management): the app's
@@ -95,10 +97,36 @@ private slots:
     void initTestCase() {
         w = new MainWindow(/*restoreSettings=*/false);
         w->show();
+        layout_ = w->saveState();
         QVERIFY(waitForRun(*w, [](const ModelSettings& s) { return s.preset == "fig20"; }));
         QVERIFY(w->statusText().contains("run "));
     }
     void cleanupTestCase() { delete w; }
+
+    // The plot views share one tabbed dock area: their tabs show whole titles and scroll,
+    // also for a tab bar QMainWindow makes later (a view moved into another tab group).
+    void viewTabsKeepTheirWholeTitles() {
+        auto bars = [this] {
+            QList<QTabBar*> shown;
+            for (QTabBar* b : w->findChildren<QTabBar*>(QString(), Qt::FindDirectChildrenOnly))
+                if (b->isVisible()) shown.append(b);
+            return shown;
+        };
+        const int shown = static_cast<int>(bars().size());
+        QVERIFY(shown > 0);
+        bool poincare = false;
+        for (QTabBar* b : bars()) {
+            QCOMPARE(b->elideMode(), Qt::ElideNone);
+            QVERIFY(b->usesScrollButtons());
+            for (int i = 0; i < b->count(); ++i) poincare = poincare || b->tabText(i) == QStringLiteral("Poincaré section");
+        }
+        QVERIFY(poincare);
+        w->tabifyDockWidget(w->dock("rig"), w->dock("timeseries"));
+        QTRY_VERIFY(bars().size() > shown);
+        for (QTabBar* b : bars()) QCOMPARE(b->elideMode(), Qt::ElideNone);
+        w->restoreState(layout_);
+        QTRY_COMPARE(static_cast<int>(bars().size()), shown);
+    }
 
     void sliderChangeReachesThePlots() {
         // A closed view is not redrawn per result (checked below).
