@@ -227,8 +227,9 @@ void PlotWidget::applyFonts() {
 }
 
 // Autoscaling a (numerically) single point gives a range of 1e-10 with unreadable labels:
-// widen such an axis to ±1 % of its value (a periodic Poincaré section is one dot). ±0.1 %
-// needed five significant digits per label and the labels overlapped in a dock-sized plot.
+// widen such an axis to ±1 % of its value. ±0.1 % needed five significant digits per label and
+// the labels overlapped in a dock-sized plot. A range under the plot's minimum span
+// (setMinimumSpans) is widened to that span.
 namespace {
 constexpr int kDefaultMajorTicks = 8;          // Qwt's default
 constexpr int kDegenerateAxisMajorTicks = 4;   // labels there carry ~5 significant digits
@@ -244,16 +245,18 @@ void PlotWidget::widenDegenerateAxes() {
     }
     for (int axis : {int(QwtPlot::xBottom), int(QwtPlot::yLeft)}) plot_->setAxisMaxMajor(axis, kDefaultMajorTicks);
     if (!any) return;
-    auto widen = [this](int axis, double lo, double hi) {
+    auto widen = [this](int axis, double lo, double hi, double minSpan) {
         const double centre = 0.5 * (lo + hi);
         const double scale = std::max(std::abs(lo), std::abs(hi));
-        if (hi - lo > 1e-6 * scale && hi - lo > 1e-300) return;
-        const double half = scale > 0 ? 1e-2 * scale : 1.0;
+        const bool single = !(hi - lo > 1e-6 * scale && hi - lo > 1e-300);
+        if (!single && !(hi - lo < minSpan)) return;
+        double half = 0.5 * minSpan;
+        if (single) half = std::max(half, scale > 0 ? 1e-2 * scale : 1.0);
         plot_->setAxisScale(axis, centre - half, centre + half);
         plot_->setAxisMaxMajor(axis, kDegenerateAxisMajorTicks);
     };
-    widen(QwtPlot::xBottom, box.left(), box.right());
-    widen(QwtPlot::yLeft, box.top(), box.bottom());
+    widen(QwtPlot::xBottom, box.left(), box.right(), minSpan_[0]);
+    widen(QwtPlot::yLeft, box.top(), box.bottom(), minSpan_[1]);
 }
 
 void PlotWidget::rescale() {

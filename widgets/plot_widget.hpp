@@ -107,6 +107,12 @@ protected:
     }
     void removeCurvesWithPrefix(const QString& prefix);
     void applyFonts();
+    // Autoscaled x (bottom) and y (left) ranges narrower than these spans [shown units] are
+    // widened to them, centred on the data (0: only numerically single values are widened).
+    void setMinimumSpans(double x, double y) {
+        minSpan_[0] = x;
+        minSpan_[1] = y;
+    }
     void widenDegenerateAxes();
 
     QwtPlot* plot_ = nullptr;
@@ -116,6 +122,7 @@ protected:
     QwtPlotGrid* grid_ = nullptr;
     double xFactor_ = 1.0;
     double yFactor_ = 1.0;
+    double minSpan_[2] = {0.0, 0.0};
 
 private:
     std::function<void()> pending_;

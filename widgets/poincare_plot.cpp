@@ -1,5 +1,7 @@
 #include "poincare_plot.hpp"
 
+#include <cmath>
+
 #include <qwt_plot.h>
 #include <qwt_plot_curve.h>
 #include <qwt_symbol.h>
@@ -12,6 +14,11 @@ PoincarePlot::PoincarePlot(QWidget* parent) : PlotWidget(parent) {
     plot_->setTitle(QStringLiteral("Poincaré section"));
     setAxisTitles(QStringLiteral("slider displacement x [mm]"), QStringLiteral("relative velocity V [m/s]"));
     setFactors(1.0e3, 1.0);
+}
+
+void PoincarePlot::setOrbitExtent(double slider_m, double relVel_mps) {
+    constexpr double kVisibleFraction = 1e-2;  // a few pixels of a dock-sized axis: about one dot
+    setMinimumSpans(kVisibleFraction * std::abs(slider_m) * xFactor_, kVisibleFraction * std::abs(relVel_mps) * yFactor_);
 }
 
 void PoincarePlot::setSection(const std::vector<double>& slider_m, const std::vector<double>& relVel_mps, LawKind law) {

@@ -19,6 +19,11 @@ public:
     void setSection(const PoincareSection& section, LawKind law = LawKind::RateState) {
         setSection(section.slider_m, section.relVel_mps, law);
     }
+    // The extent of the orbit the section cuts (its range of x [m] and V [m/s] over the run):
+    // the axes show at least 1 % of it, so section points closer than that read as one point.
+    // The integrator's own scatter (the tolerance's order times the orbit) would otherwise be
+    // autoscaled into a cloud, and a periodic motion would look irregular. 0: no minimum.
+    void setOrbitExtent(double slider_m, double relVel_mps);
 };
 
 }  // namespace stickslip::widgets

@@ -7,8 +7,10 @@
 #include "param_specs.hpp"
 #include "time_series_controls.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <utility>
 
 #include "core/io/csv_table.hpp"
 #include "widgets/autocorrelation_plot.hpp"
@@ -24,6 +26,25 @@
 namespace stickslip::gui {
 
 using namespace stickslip::widgets;
+
+namespace {
+
+// The range of the slider displacement x and of the relative velocity V over the runs of an
+// outcome, the orbit a Poincaré section cuts (PoincarePlot::setOrbitExtent).
+std::pair<double, double> orbitExtent(const RunOutcome& o) {
+    double x = 0, v = 0;
+    for (const ModelRun& mr : o.runs) {
+        const auto& s = mr.run.samples;
+        if (s.empty()) continue;
+        const auto [xl, xh] = std::minmax_element(s.begin(), s.end(), [](const Sample& a, const Sample& b) { return a.slider_m < b.slider_m; });
+        const auto [vl, vh] = std::minmax_element(s.begin(), s.end(), [](const Sample& a, const Sample& b) { return a.relVel_mps < b.relVel_mps; });
+        x = std::max(x, xh->slider_m - xl->slider_m);
+        v = std::max(v, vh->relVel_mps - vl->relVel_mps);
+    }
+    return {x, v};
+}
+
+}  // namespace
 
 ViewSet::ViewSet(QWidget* parent) : QObject(parent) {
     timeSeries_ = new TimeSeriesPlot(parent);
@@ -120,6 +141,8 @@ void ViewSet::showShared(const std::shared_ptr<const RunOutcome>& shared) {
     if (o.sectionInRun || prescribed) {
         poincare_->updateWhenVisible([this, shared] {
             poincare_->clearAll();
+            const auto [x, v] = orbitExtent(*shared);
+            poincare_->setOrbitExtent(x, v);
             for (const ModelRun& mr : shared->runs)
                 if (!mr.section.slider_m.empty())
                     poincare_->setSection(mr.section.slider_m, mr.section.relVel_mps, mr.law);
@@ -133,8 +156,10 @@ void ViewSet::showShared(const std::shared_ptr<const RunOutcome>& shared) {
 
 void ViewSet::showPoincare(const PoincareOutcome& o) {
     auto shared = std::make_shared<const PoincareOutcome>(o);
-    poincare_->updateWhenVisible([this, shared] {
+    poincare_->updateWhenVisible([this, shared, run = lastRun_] {
         poincare_->clearAll();
+        const auto [x, v] = run ? orbitExtent(*run) : std::pair<double, double>{0.0, 0.0};
+        poincare_->setOrbitExtent(x, v);
         for (const auto& [law, sec] : shared->sections)
             if (!sec.slider_m.empty()) poincare_->setSection(sec.slider_m, sec.relVel_mps, law);
     });

@@ -16,6 +16,8 @@
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QtTest>
+
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -73,6 +75,7 @@ private slots:
     void navigationToolsExist();
     void phasePortraitAndPoincare();
     void singlePointSectionHasReadableTickLabels();
+    void sectionScatterBelowTheOrbitsResolutionIsOneDot();
     void loopOrientationMarksClockwise();
     void loopOrientationMarksCounterClockwise();
     void rateStateLoopsAreClockwise();
@@ -233,6 +236,42 @@ void TestWidgets::singlePointSectionHasReadableTickLabels() {
         QVERIFY2(labels < 0.8 * room, qPrintable(QString("axis %1: %2 tick labels need %3 px of %4")
                                                       .arg(axis).arg(ticks.size()).arg(labels).arg(room)));
     }
+}
+
+// The section of a periodic run computed at a tolerance scatters by the tolerance's order (Fig. 22
+// preset, TOL 1e-4: x within 4e-9 m, V within 6e-7 m/s). With the orbit's extent given, the
+// axes show at least 1 % of it around the points (one dot); a section spread wider than that,
+// and one without an extent, keep the autoscaled range.
+void TestWidgets::sectionScatterBelowTheOrbitsResolutionIsOneDot() {
+    std::vector<double> x, v;
+    for (int i = 0; i < 40; ++i) {
+        x.push_back(7.10377e-5 + 4e-10 * (i % 7));
+        v.push_back(4.76614e-3 + 6e-8 * (i % 5));
+    }
+    auto spans = [](PoincarePlot& p) {
+        QwtPlot* plot = p.plot();
+        plot->replot();
+        const QwtScaleDiv xs = plot->axisScaleDiv(QwtPlot::xBottom), ys = plot->axisScaleDiv(QwtPlot::yLeft);
+        return std::array<double, 4>{xs.lowerBound(), xs.upperBound(), ys.lowerBound(), ys.upperBound()};
+    };
+    PoincarePlot plain;
+    plain.setSection(x, v, LawKind::RateState);
+    const auto a = spans(plain);
+    QVERIFY2(a[1] - a[0] < 1e-4, qPrintable(QString("x span %1 mm").arg(a[1] - a[0])));  // autoscaled to the scatter
+    PoincarePlot dot;
+    dot.setOrbitExtent(1.0e-3, 0.05);  // x over 1 mm, V over 0.05 m/s
+    dot.setSection(x, v, LawKind::RateState);
+    const auto b = spans(dot);
+    QVERIFY2(b[1] - b[0] >= 0.01 * 1.0 * (1 - 1e-9), qPrintable(QString("x span %1 mm").arg(b[1] - b[0])));
+    QVERIFY2(b[3] - b[2] >= 0.01 * 0.05 * (1 - 1e-9), qPrintable(QString("V span %1 m/s").arg(b[3] - b[2])));
+    QVERIFY(b[0] < x.front() * 1e3 && b[1] > x.back() * 1e3 && b[2] < v.front() && b[3] > v.back());
+    QVERIFY(std::abs(0.5 * (b[0] + b[1]) - 7.10389e-2) < 1e-5);  // centred on the points
+    // A cloud wider than 1 % of the orbit: the data's own range.
+    std::vector<double> wide = x;
+    for (size_t i = 0; i < wide.size(); ++i) wide[i] += 3e-4 * static_cast<double>(i) / 39.0;
+    dot.setSection(wide, v, LawKind::RateState);
+    const auto c = spans(dot);
+    QVERIFY(c[1] - c[0] >= 0.3 && c[1] - c[0] < 0.6);
 }
 
 void TestWidgets::phasePortraitAndPoincare() {
