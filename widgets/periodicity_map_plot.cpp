@@ -59,7 +59,9 @@ QColor PeriodicityMapPlot::classColor(int code) {
     if (code == 2) return QColor(44, 160, 44);
     if (code == 3) return QColor(188, 189, 34);
     if (code == 4) return QColor(255, 187, 120);
-    if (code >= 5 && code <= 16) return QColor::fromHsv(280 - (code - 5) * 12, 140, 210);  // purples
+    // Periods 5–16: one hue, light (5) to dark (16). Hues spread over 280°–148° made period 11
+    // a light blue that read as period 1 and period 16 a cyan that matched no legend entry.
+    if (code >= 5 && code <= 16) return QColor::fromHsl(285, 200, 190 - (code - 5) * 10);
     return QColor(255, 255, 255);  // missing
 }
 
@@ -76,10 +78,14 @@ PeriodicityMapPlot::PeriodicityMapPlot(QWidget* parent) : PlotWidget(parent) {
     QStringList parts;
     const std::pair<int, QString> items[] = {{kMapStick, QStringLiteral("stick")},    {1, QStringLiteral("period 1")},
                                              {2, QStringLiteral("2")},                {3, QStringLiteral("3")},
-                                             {4, QStringLiteral("4")},                {8, QStringLiteral("5–16")},
+                                             {4, QStringLiteral("4")},                {5, QStringLiteral("5–16 (light to dark)")},
                                              {kMapIrregular, QStringLiteral("irregular")}};
-    for (const auto& [code, name] : items)
-        parts << QStringLiteral("<span style='color:%1'>&#9632;</span> %2").arg(classColor(code).name(), name);
+    for (const auto& [code, name] : items) {
+        QString swatch = QStringLiteral("<span style='color:%1'>&#9632;</span>").arg(classColor(code).name());
+        if (code == 5)  // the range's ends: 5 and 16
+            swatch += QStringLiteral("<span style='color:%1'>&#9632;</span>").arg(classColor(16).name());
+        parts << swatch + QLatin1Char(' ') + name;
+    }
     QwtText footer(parts.join(QStringLiteral("&nbsp;&nbsp;")), QwtText::RichText);
     plot_->setFooter(footer);
     if (plot_->legend()) plot_->insertLegend(nullptr);

@@ -452,8 +452,27 @@ void TestWidgets::periodicityMapShowsClasses() {
     QCOMPARE(data->value(3.0, 3.0), 2.0);
     QCOMPARE(data->value(1.0, 4.0), double(kMapIrregular));
     QCOMPARE(data->value(2.0, 4.0), 5.0);
-    QVERIFY(PeriodicityMapPlot::classColor(kMapIrregular) != PeriodicityMapPlot::classColor(1));
-    QVERIFY(PeriodicityMapPlot::classColor(kMapStick) != PeriodicityMapPlot::classColor(2));
+    // Every class reads apart from the others: periods 5–16 share one hue, darker with the
+    // period, and none of them is near a colour of stick, period 1–4 or irregular.
+    auto distance = [](const QColor& a, const QColor& b) {
+        return std::hypot(a.red() - b.red(), a.green() - b.green(), a.blue() - b.blue());
+    };
+    const int named[] = {kMapStick, 1, 2, 3, 4, kMapIrregular};
+    for (int a : named)
+        for (int b : named)
+            if (a < b) QVERIFY(distance(PeriodicityMapPlot::classColor(a), PeriodicityMapPlot::classColor(b)) > 60);
+    for (int p = 5; p <= 16; ++p) {
+        const QColor c = PeriodicityMapPlot::classColor(p);
+        QCOMPARE(c.hslHue(), PeriodicityMapPlot::classColor(5).hslHue());
+        if (p > 5) QVERIFY(c.lightness() < PeriodicityMapPlot::classColor(p - 1).lightness());
+        for (int a : named) {
+            const QColor o = PeriodicityMapPlot::classColor(a);
+            QVERIFY2(distance(c, o) > 60, qPrintable(QString("period %1 vs class %2").arg(p).arg(a)));
+            const int dh = std::abs(c.hslHue() - o.hslHue());
+            if (o.hslHue() >= 0) QVERIFY2(std::min(dh, 360 - dh) >= 40, qPrintable(QString("period %1's hue vs class %2's").arg(p).arg(a)));
+        }
+    }
+    QVERIFY(w.plot()->footer().text().contains("5–16"));
 
     // From the core map type: motion classes become codes, undone cells "missing".
     PeriodicityMap m;
