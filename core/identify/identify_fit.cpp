@@ -182,12 +182,7 @@ static FitOutcome outcomeOf(const Context& cx, const Spec& spec, const std::vect
     double mass = kNaN;
     const ExtendedModel m = buildModel(cx, spec, out.values, mass);
     std::vector<double> r;
-    for (size_t i : idx) {
-        double ss = 0, n = 0;
-        runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments);
-        out.ss += ss;
-        out.count += n;
-    }
+    residualsOver(cx, spec, idx, m, mass, r, out.ss, out.count);
     return out;
 }
 
@@ -237,14 +232,9 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
     prob.residuals = [&cx, &spec, &idx, lawValues](const std::vector<double>& pv, std::vector<double>& r) {
         std::map<std::string, double> vals;
         if (!lawValues(pv, vals)) return false;
-        double mass = kNaN;
+        double mass = kNaN, ss = 0, n = 0;
         const ExtendedModel m = buildModel(cx, spec, vals, mass);
-        r.clear();
-        for (size_t i : idx) {
-            double ss = 0, n = 0;
-            if (!runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments)) return false;
-        }
-        return true;
+        return residualsOver(cx, spec, idx, m, mass, r, ss, n);
     };
     prob.batchResiduals = batchResiduals(cx, spec, idx, names, lawValues);
     ++fits;

@@ -150,6 +150,10 @@ Eigen::MatrixXd residualJacobian(const Context& cx, const Spec& spec, const std:
                                  const std::vector<size_t>& idx, const std::vector<FitParameter>& params,
                                  const std::vector<std::string>& which, size_t rows);
 double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx);
+// The residuals of model m over the runs idx, appended run after run to r (cleared first), and
+// their sum of squares and count added to ss and n; false where a run cannot be evaluated.
+bool residualsOver(const Context& cx, const Spec& spec, const std::vector<size_t>& idx, const ExtendedModel& m, double mass,
+                   std::vector<double>& r, double& ss, double& n);
 
 std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const std::map<std::string, double>& start);
 // Which finite-difference Jacobian a fit's solver uses (IdentifyOptions::forwardJacobian).

@@ -295,19 +295,26 @@ Eigen::MatrixXd residualJacobian(const Context& cx, const Spec& spec, const std:
     return J;
 }
 
+// The residuals of model m over the runs idx, appended run after run to r (cleared first), and
+// their sum of squares and count added to ss and n; false where a run cannot be evaluated.
+bool residualsOver(const Context& cx, const Spec& spec, const std::vector<size_t>& idx, const ExtendedModel& m,
+                   double mass, std::vector<double>& r, double& ss, double& n) {
+    r.clear();
+    for (size_t i : idx) {
+        double ssRun = 0, nRun = 0;
+        if (!runResiduals(cx, cx.runs[i], m, mass, r, ssRun, nRun, nullptr, nullptr, nullptr, spec.segments)) return false;
+        ss += ssRun;
+        n += nRun;
+    }
+    return true;
+}
+
 // Sum of squared residuals of a model over the runs idx (inf if a run fails).
 double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx) {
-    double mass = kNaN;
+    double mass = kNaN, ss = 0, n = 0;
     const ExtendedModel m = buildModel(cx, spec, vals, mass);
     std::vector<double> r;
-    double tot = 0;
-    for (size_t i : idx) {
-        double ss = 0, n = 0;
-        if (!runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, nullptr, nullptr, spec.segments))
-            return std::numeric_limits<double>::infinity();
-        tot += ss;
-    }
-    return tot;
+    return residualsOver(cx, spec, idx, m, mass, r, ss, n) ? ss : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace stickslip::identify::detail
