@@ -32,6 +32,14 @@ inline SimParams fig20Params() {
     return p;
 }
 
+// fig20Params with the given law (Coulomb or rate-state) over `cycles` forcing cycles.
+inline SimParams lawParams(bool coulomb, double cycles) {
+    SimParams p = fig20Params();
+    p.law = coulomb ? LawKind::Coulomb : LawKind::RateState;
+    p.cycles = cycles;
+    return p;
+}
+
 inline bool sampleFinite(const Sample& s) {
     return std::isfinite(s.t_s) && std::isfinite(s.stage_m) && std::isfinite(s.slider_m) &&
            std::isfinite(s.sliderVel_mps) && std::isfinite(s.relVel_mps) && std::isfinite(s.force_N) &&
