@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "../analysis/parallel.hpp"
 #include "../io/units.hpp"
 #include "fit_report.hpp"
 
@@ -20,19 +21,26 @@ bool fail(PipelineStatus& st, PipelineCode code, const std::string& msg) {
 }
 
 // Cleans every run of `ds`; each must know its t_N.
+// The runs are cleaned in parallel (each its own slot; the stage's harmonic fit with its
+// frequency search is most of a second per run), then checked in order, so the first bad run
+// is the one reported, as before.
 bool cleanRuns(const io::Dataset& ds, const PreprocessSettings& pre, std::vector<CleanRun>& out,
                PipelineStatus& st) {
-    for (const io::Run& r : ds.runs) {
-        CleanRun c;
-        std::string e;
-        if (!preprocessRun(r, pre, c, &e)) return fail(st, PipelineCode::BadArguments, e);
+    const size_t n = ds.runs.size();
+    std::vector<CleanRun> clean(n);
+    std::vector<std::string> errors(n);
+    std::vector<char> ok(n, 0);
+    parallelFor(n, 0, [&](size_t i) { ok[i] = preprocessRun(ds.runs[i], pre, clean[i], &errors[i]) ? 1 : 0; });
+    for (size_t i = 0; i < n; ++i) {
+        const io::Run& r = ds.runs[i];
+        if (!ok[i]) return fail(st, PipelineCode::BadArguments, errors[i]);
         double tN = 0;
-        if (!c.run.setting("tN", tN))
+        if (!clean[i].run.setting("tN", tN))
             return fail(st, PipelineCode::BadArguments,
                         r.file + ": t_N unknown: give a normal_force_N or band_tension_N column, a manifest, or --run-set " +
                             r.name() + ":tN=VALUE");
-        out.push_back(std::move(c));
     }
+    for (CleanRun& c : clean) out.push_back(std::move(c));
     return true;
 }
 

@@ -2,6 +2,7 @@
 #include <QtTest>
 
 #include <atomic>
+#include <cmath>
 
 #include "core/identify/pipeline.hpp"
 
@@ -111,6 +112,47 @@ private slots:
         QVERIFY(!fitLaws(one.fitRuns, one.validationRuns, s, laws, fits, st));
         QVERIFY(st.code == PipelineCode::Cancelled);
         QVERIFY(fits.empty());
+    }
+
+    // The runs are cleaned in parallel (pipeline.cpp, cleanRuns): the report lists them in the
+    // order given, each as cleaned alone; among runs without a known t_N the first is named.
+    void runsAreCleanedInOrderAndTheFirstBadOneIsNamed() {
+        const std::vector<std::string> files = {kDamper + "1Hz_36lb_1in.csv", kDamper + "0.5Hz_30lb_1in.csv",
+                                                kDamper + "1Hz_30lb_0.5in.csv"};
+        FitRequest req = oneDamperRunCoulomb();
+        req.maxIterations = 1;
+        req.in.data = files;
+        FitOutcome all;
+        PipelineStatus st;
+        QVERIFY2(runFitRequest(req, all, st), st.message.c_str());
+        const nlohmann::json& runs = all.report["preprocessing"]["runs"];
+        QCOMPARE(runs.size(), files.size());
+        for (size_t i = 0; i < files.size(); ++i) {
+            FitRequest one = req;
+            one.in.data = {files[i]};
+            FitOutcome alone;
+            QVERIFY2(runFitRequest(one, alone, st), st.message.c_str());
+            QCOMPARE(runs[i]["file"].get<std::string>(), files[i]);
+            QCOMPARE(runs[i].dump(), alone.report["preprocessing"]["runs"][0].dump());
+            QVERIFY(all.fitRuns[i].run.channels == alone.fitRuns[0].run.channels);
+        }
+        QTemporaryDir dir;
+        QVERIFY(dir.isValid());
+        std::vector<std::string> noLoad;
+        for (const char* name : {"a.csv", "b.csv"}) {
+            const std::string path = dir.filePath(name).toStdString();
+            QFile f(QString::fromStdString(path));
+            QVERIFY(f.open(QIODevice::WriteOnly));
+            f.write("time_s,slip_m,friction_force_N\n");
+            for (int i = 0; i < 2000; ++i)
+                f.write(QString("%1,%2,%3\n").arg(i * 1e-3).arg(1e-3 * std::sin(6.2832 * i * 1e-3)).arg(std::cos(6.2832 * i * 1e-3)).toUtf8());
+            f.close();
+            noLoad.push_back(path);
+        }
+        req.in.data = {files[0], noLoad[0], noLoad[1]};
+        QVERIFY(!runFitRequest(req, all, st));
+        QVERIFY(st.code == PipelineCode::BadArguments);
+        QVERIFY2(st.message.rfind(noLoad[0] + ": t_N unknown", 0) == 0, st.message.c_str());
     }
 
     void identifyRequestRejectsBadOptions() {
