@@ -183,10 +183,26 @@ std::vector<double> scannedPoint(const FitProblem& prob, const Mapping& map, Poi
     return z;
 }
 
+// Ceres' cost ½ Σ ρ(r²) at z (infinite where the model cannot be evaluated); z was evaluated
+// by the solve that ended there, so the residuals come from the evaluator's memory.
+double costAt(const FitProblem& prob, PointEvaluator& evaluator, const std::vector<double>& z) {
+    const PointEvaluator::Ptr r = evaluator.evaluate({z}).front();
+    if (!r->ok) return std::numeric_limits<double>::infinity();
+    std::unique_ptr<ceres::LossFunction> loss;
+    if (prob.loss == LossKind::Huber) loss = std::make_unique<ceres::HuberLoss>(prob.lossScale);
+    else if (prob.loss == LossKind::Cauchy) loss = std::make_unique<ceres::CauchyLoss>(prob.lossScale);
+    double sq = 0;
+    for (double v : r->r) sq += v * v;
+    if (!loss) return 0.5 * sq;
+    double rho[3];
+    loss->Evaluate(sq, rho);
+    return 0.5 * rho[0];
+}
+
 // One bounded trust-region solve from z (moved to the solver's end point), start s of the
-// multistart (for the progress callback).
-ceres::Solver::Summary solveFrom(const FitProblem& prob, const Mapping& map, PointEvaluator& evaluator, std::vector<double>& z,
-                                 int s) {
+// multistart (for the progress callback); the coordinates `held` stay where they are.
+ceres::Solver::Summary solveOnce(const FitProblem& prob, const Mapping& map, PointEvaluator& evaluator, std::vector<double>& z,
+                                 int s, const std::vector<int>& held) {
     const size_t p = map.freeIdx.size();
     ceres::Problem::Options po;
     ceres::Problem problem(po);
@@ -195,6 +211,7 @@ ceres::Solver::Summary solveFrom(const FitProblem& prob, const Mapping& map, Poi
     if (prob.loss == LossKind::Huber) loss = new ceres::HuberLoss(prob.lossScale);
     else if (prob.loss == LossKind::Cauchy) loss = new ceres::CauchyLoss(prob.lossScale);
     problem.AddResidualBlock(cost, loss, z.data());
+    if (!held.empty()) problem.SetManifold(z.data(), new ceres::SubsetManifold(static_cast<int>(p), held));
     for (size_t k = 0; k < p; ++k) {
         problem.SetParameterLowerBound(z.data(), static_cast<int>(k), map.lowerZ(k));
         problem.SetParameterUpperBound(z.data(), static_cast<int>(k), map.upperZ(k));
@@ -205,6 +222,13 @@ ceres::Solver::Summary solveFrom(const FitProblem& prob, const Mapping& map, Poi
     so.function_tolerance = prob.functionTolerance;
     so.parameter_tolerance = prob.parameterTolerance;
     so.gradient_tolerance = 1e-12;
+    // Bounded problems get Ceres' projected Armijo line search after every trust-region step.
+    // Its default cubic interpolation asks for the gradient at each trial point, and our
+    // gradient is a differenced Jacobian (p or 2p more residual vectors): a whole Jacobian at
+    // every trial, most of them at steps the trust region then rejects. Quadratic interpolation
+    // needs only the trial's cost; the Jacobian is then differenced once per accepted point
+    // (tst_fit_engine::jacobiansOnlyAtAcceptedPoints).
+    so.line_search_interpolation_type = ceres::QUADRATIC;
     so.num_threads = 1;
     so.logging_type = ceres::SILENT;
     so.minimizer_progress_to_stdout = false;
@@ -213,6 +237,41 @@ ceres::Solver::Summary solveFrom(const FitProblem& prob, const Mapping& map, Poi
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
     return summary;
+}
+
+// solveOnce, and again with the coordinates that start on a bound held there when the first
+// solve could not take a single step. Ceres judges a step by the decrease its linear model
+// predicts for the step before the bounds clip it (its issue 187): from a start on a bound with
+// the gradient pointing out of the box, the clipped step gains a small part of that prediction,
+// every step is rejected, and the solve ends where it began (seen: all four leave-one-run-out
+// refits of a backlash model whose C1 and eta sat on their lower bounds and v_c on its upper,
+// tst_identify_contact::findsBacklash; its jackknife standard error came out 0). Holding those
+// coordinates is the active set the clipped step implies; the second solve is kept only when it
+// ends lower.
+//
+// Ceres' final_cost is the lowest cost of any iteration, and an iteration that rejects its step
+// records the rejected trial's cost (seen lower than the cost at the returned point, in the case
+// above). The summary returned carries the cost at its end point instead, which is what the
+// multistart compares and the result reports.
+ceres::Solver::Summary solveFrom(const FitProblem& prob, const Mapping& map, PointEvaluator& evaluator, std::vector<double>& z,
+                                 int s) {
+    const std::vector<double> z0 = z;
+    ceres::Solver::Summary first = solveOnce(prob, map, evaluator, z, s, {});
+    if (first.IsSolutionUsable()) first.final_cost = costAt(prob, evaluator, z);
+    if (z != z0 || !first.IsSolutionUsable() || (prob.cancel && prob.cancel->load(std::memory_order_relaxed))) return first;
+    std::vector<int> held;
+    for (size_t k = 0; k < z0.size(); ++k) {
+        const double tol = 1e-12 * std::max(1.0, std::abs(z0[k]));
+        if (std::abs(z0[k] - map.lowerZ(k)) <= tol || std::abs(z0[k] - map.upperZ(k)) <= tol) held.push_back(static_cast<int>(k));
+    }
+    if (held.empty() || held.size() == z0.size()) return first;
+    std::vector<double> z1 = z0;
+    ceres::Solver::Summary second = solveOnce(prob, map, evaluator, z1, s, held);
+    if (!second.IsSolutionUsable()) return first;
+    second.final_cost = costAt(prob, evaluator, z1);
+    if (!(second.final_cost < first.final_cost)) return first;
+    z = std::move(z1);
+    return second;
 }
 
 // How many starts ended at bestCost within FitProblem::sameCostTolerance (relative).

@@ -209,11 +209,23 @@ private slots:
         // Not worse, and at most a small step further down (the plain solver stops by its function
         // tolerance; measured: curve 0.016 lower in chi2).
         QVERIFY(chi2 > -0.01 && chi2 < 0.1);
+        // The standard errors are compared at one point, the curve fit's optimum, refitted in C1,
+        // eta, vc from there: where the plain solver stops along the valley floor its differenced
+        // standard errors move (mu: 0.00101 and 0.00126 at two stopping points 0.03 s.e. apart,
+        // reached by two versions of the solver's line search). At one point they still differ by
+        // up to 1.44x (mu: 0.00111 against the curve fit's 0.00077): the Jacobian differenced
+        // through a simulated stick-slip run is not smooth at the solver's step, in either
+        // coordinates.
+        for (const std::string& n : st.free) st.start[n] = curve.fit.value(n);
+        st.curveCoordinates = false;
+        const DatasetFit there = fitDataset(runs, {}, st);
+        QVERIFY2(there.ok, there.message.c_str());
         for (const std::string& n : st.free) {
             const double a = plain.fit.value(n), b = curve.fit.value(n);
-            const double sa = plain.fit.stderrOf(n), sb = curve.fit.stderrOf(n);
+            const double sa = there.fit.stderrOf(n), sb = curve.fit.stderrOf(n);
+            qInfo("%-4s plain from the curve fit's optimum %.6g +- %.3g", n.c_str(), there.fit.value(n), sa);
             QVERIFY(sa > 0 && sb > 0);
-            QVERIFY2(std::abs(a - b) < 0.3 * sa, n.c_str());
+            QVERIFY2(std::abs(a - b) < 0.3 * plain.fit.stderrOf(n), n.c_str());
             QVERIFY2(std::abs(std::log(sb / sa)) < std::log(1.5), n.c_str());
         }
         QCOMPARE(curve.fit.correlation.size(), plain.fit.correlation.size());

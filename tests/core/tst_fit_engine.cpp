@@ -307,6 +307,74 @@ private slots:
         QVERIFY(f.residualEvaluations < 0.75 * c.residualEvaluations);
     }
 
+    // The solver differences its Jacobian only at points it has accepted (costs decreasing).
+    // The projected line search Ceres runs on bounded problems interpolates cubically by
+    // default, which asks for the gradient at every trial point: a whole Jacobian (p more
+    // residual vectors) at each trial, most of them steps the trust region then rejects. On
+    // the Rosenbrock valley from (-1.2, 1), where trials are rejected, every Jacobian's base
+    // point must cost no more than the one before it.
+    void jacobiansOnlyAtAcceptedPoints() {
+        FitProblem p;
+        p.parameters = {{"x", -1.2, -5.0, 5.0, true, ParamScale::Linear}, {"y", 1.0, -5.0, 5.0, true, ParamScale::Linear}};
+        p.residualCount = 3;  // the third is 0: the engine needs more residuals than free parameters
+        p.multistarts = 1;
+        p.uncertainty = false;
+        p.maxIterations = 200;
+        p.jacobian = JacobianKind::Forward;
+        auto cost = [](const std::vector<double>& v) {
+            const double a = 10.0 * (v[1] - v[0] * v[0]), b = 1.0 - v[0];
+            return 0.5 * (a * a + b * b);
+        };
+        std::vector<double> jacobianBaseCosts;
+        int trialsAboveCurrent = 0;
+        p.batchResiduals = [&](const std::vector<std::vector<double>>& pts, std::vector<std::vector<double>>& rs, std::vector<char>& ok) {
+            ok.assign(pts.size(), 1);
+            for (size_t k = 0; k < pts.size(); ++k) rs[k] = {10.0 * (pts[k][1] - pts[k][0] * pts[k][0]), 1.0 - pts[k][0], 0.0};
+            if (pts.size() == 2) {  // forward differences in x and in y: base = (x of the y point, y of the x point)
+                jacobianBaseCosts.push_back(cost({pts[1][0], pts[0][1]}));
+            } else if (pts.size() == 1 && !jacobianBaseCosts.empty() && cost(pts[0]) > jacobianBaseCosts.back()) {
+                ++trialsAboveCurrent;
+            }
+        };
+        const FitResult r = fitLeastSquares(p);
+        QVERIFY2(r.ok(), r.message.c_str());
+        QVERIFY2(std::abs(r.value("x") - 1.0) < 1e-4 && std::abs(r.value("y") - 1.0) < 1e-4,
+                 qPrintable(QString("optimum (%1, %2)").arg(r.value("x")).arg(r.value("y"))));
+        QVERIFY2(trialsAboveCurrent > 0, "no trial point was worse than the current one: the test does not exercise rejection");
+        QVERIFY(jacobianBaseCosts.size() >= 2);
+        for (size_t i = 1; i < jacobianBaseCosts.size(); ++i)
+            QVERIFY2(jacobianBaseCosts[i] <= jacobianBaseCosts[i - 1],
+                     qPrintable(QString("Jacobian %1 at cost %2 after one at %3: differenced at a point the solver did not accept")
+                                    .arg(i).arg(jacobianBaseCosts[i]).arg(jacobianBaseCosts[i - 1])));
+        qInfo("%zu Jacobians, %d trial points worse than the current one, %ld residual vectors", jacobianBaseCosts.size(),
+              trialsAboveCurrent, r.residualEvaluations);
+    }
+
+    // A start on a bound with the gradient pointing out of the box (x on its lower bound 0, its
+    // residual 1000 (x + 5) pulling it to -5): every step Ceres proposes is mostly x, the bound
+    // clips it, the decrease left is a sliver of the predicted one and the step is rejected; the
+    // solve used to end where it began, y never moving from 10. x is then held on its bound and y
+    // solved alone (fit.cpp, solveFrom).
+    void aStartOnAnActiveBoundStillMovesTheOthers() {
+        FitProblem p;
+        p.parameters = {{"x", 0.0, 0.0, 10.0, true, ParamScale::Linear}, {"y", 10.0, 0.0, 20.0, true, ParamScale::Linear}};
+        p.residualCount = 3;
+        p.multistarts = 1;
+        p.uncertainty = false;
+        p.residuals = [](const std::vector<double>& v, std::vector<double>& r) {
+            r = {1000.0 * (v[0] + 5.0), v[1] - 3.0, 0.1 * (v[1] - 3.0) * v[0]};
+            return true;
+        };
+        const FitResult r = fitLeastSquares(p);
+        QVERIFY2(r.ok(), r.message.c_str());
+        qInfo("x %.6g, y %.6g, %s", r.value("x"), r.value("y"), r.solverSummary.c_str());
+        QCOMPARE(r.value("x"), 0.0);
+        // To the function tolerance, relative to a cost that x's residual dominates (seen 3.0007).
+        QVERIFY2(std::abs(r.value("y") - 3.0) < 1e-2, qPrintable(QString("y = %1").arg(r.value("y"))));
+        // The reported cost is the cost at the reported values.
+        QVERIFY(std::abs(r.cost - 0.5 * (25e6 + std::pow(r.value("y") - 3.0, 2))) <= 1e-9 * r.cost);
+    }
+
     // agreeingStarts: stop once that many starts ended at the same (best) cost.
     void multistartStopsWhenStartsAgree() {
         std::vector<double> t, y;
