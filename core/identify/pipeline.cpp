@@ -20,10 +20,9 @@ bool fail(PipelineStatus& st, PipelineCode code, const std::string& msg) {
     return false;
 }
 
-// Cleans every run of `ds`; each must know its t_N.
-// The runs are cleaned in parallel (each its own slot; the stage's harmonic fit with its
-// frequency search is most of a second per run), then checked in order, so the first bad run
-// is the one reported, as before.
+// Cleans every run of `ds`; each must know its t_N. The runs are cleaned in parallel (each into
+// its own slot; the stage's harmonic fit and its frequency search take a few tenths of a second
+// a run), then checked in order, so that the first bad run is the one reported.
 bool cleanRuns(const io::Dataset& ds, const PreprocessSettings& pre, std::vector<CleanRun>& out,
                PipelineStatus& st) {
     const size_t n = ds.runs.size();
