@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <limits>
-#include <map>
 #include <random>
 
 #include "core/identify/fit.hpp"
