@@ -183,14 +183,19 @@ std::vector<double> scannedPoint(const FitProblem& prob, const Mapping& map, Poi
     return z;
 }
 
+// The robust loss of FitProblem::loss on the residual block (null: plain least squares).
+std::unique_ptr<ceres::LossFunction> makeLoss(const FitProblem& prob) {
+    if (prob.loss == LossKind::Huber) return std::make_unique<ceres::HuberLoss>(prob.lossScale);
+    if (prob.loss == LossKind::Cauchy) return std::make_unique<ceres::CauchyLoss>(prob.lossScale);
+    return nullptr;
+}
+
 // Ceres' cost ½ Σ ρ(r²) at z (infinite where the model cannot be evaluated); z was evaluated
 // by the solve that ended there, so the residuals come from the evaluator's memory.
 double costAt(const FitProblem& prob, PointEvaluator& evaluator, const std::vector<double>& z) {
     const PointEvaluator::Ptr r = evaluator.evaluate({z}).front();
     if (!r->ok) return std::numeric_limits<double>::infinity();
-    std::unique_ptr<ceres::LossFunction> loss;
-    if (prob.loss == LossKind::Huber) loss = std::make_unique<ceres::HuberLoss>(prob.lossScale);
-    else if (prob.loss == LossKind::Cauchy) loss = std::make_unique<ceres::CauchyLoss>(prob.lossScale);
+    const std::unique_ptr<ceres::LossFunction> loss = makeLoss(prob);
     double sq = 0;
     for (double v : r->r) sq += v * v;
     if (!loss) return 0.5 * sq;
@@ -207,10 +212,7 @@ ceres::Solver::Summary solveOnce(const FitProblem& prob, const Mapping& map, Poi
     ceres::Problem::Options po;
     ceres::Problem problem(po);
     auto* cost = new DifferenceCost(evaluator, p, prob.residualCount, prob.relativeStep, prob.jacobian);
-    ceres::LossFunction* loss = nullptr;
-    if (prob.loss == LossKind::Huber) loss = new ceres::HuberLoss(prob.lossScale);
-    else if (prob.loss == LossKind::Cauchy) loss = new ceres::CauchyLoss(prob.lossScale);
-    problem.AddResidualBlock(cost, loss, z.data());
+    problem.AddResidualBlock(cost, makeLoss(prob).release(), z.data());  // the problem owns the loss
     if (!held.empty()) problem.SetManifold(z.data(), new ceres::SubsetManifold(static_cast<int>(p), held));
     for (size_t k = 0; k < p; ++k) {
         problem.SetParameterLowerBound(z.data(), static_cast<int>(k), map.lowerZ(k));
