@@ -4,6 +4,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,10 @@ void printSelfTest(const SelfTestResult& st) {
         std::printf("  %-22s %-26s %11.4g %6.2f %8.2f %4d/%-4d %9d %7d%s%s\n", w.effect.c_str(),
                     (w.sizeParam + " [" + w.unit + "]").c_str(), w.size, w.snr, w.visibleSnr, w.detected, w.replicas, w.confused,
                     w.missed, w.note.empty() ? "" : "  ", w.note.c_str());
+    std::set<std::string> shown;  // an effect's stated shape, once
+    for (const SelfTestRow& w : st.rows)
+        if (shown.insert(w.effect).second)
+            for (const auto& [name, v] : w.shape) std::printf("  (%s injected with %s = %.4g)\n", w.effect.c_str(), name.c_str(), v);
     std::printf("  (SNR: RMS of the injected signal / RMS of the baseline residual; visible: of the part the baseline's "
                 "refit cannot mimic)\n");
     std::printf("  false alarms on %d replicas without an effect: %d\n", st.falseAlarmReplicas, st.falseAlarms);
@@ -165,7 +170,9 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
                     "self-test: injected signal RMS over the baseline residual RMS, one row per level, in (0, 100]")
         ->delimiter(',')->capture_default_str();
     cmd->add_option("--self-test-size", o->req.selfTestSizes,
-                    "self-test: EFFECT=VALUE, the stated size of an effect's size parameter (SI units), instead of the levels")
+                    "self-test: EFFECT=VALUE, the stated size of an effect's size parameter (SI units), instead of the levels; "
+                    "EFFECT.PARAMETER=VALUE sets another of its parameters in the injection (default: its start), "
+                    "e.g. stick_healing=0.01 stick_healing.tc_s=0.002")
         ->expected(1, -1);
     cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
     cmd->callback([o, &exitCode] { runIdentify(*o, exitCode); });

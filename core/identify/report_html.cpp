@@ -115,8 +115,10 @@ static void writeSelfTest(std::ostream& o, const SelfTestResult& st) {
     for (const SelfTestRow& w : st.rows) {
         std::string confused;
         for (const auto& [name, n] : w.confusedWith) confused += (confused.empty() ? "" : ", ") + name + " &times;" + std::to_string(n);
+        std::string shape;  // the effect's other parameters as stated
+        for (const auto& [name, v] : w.shape) shape += ", " + htmlEscape(name) + " = " + fmt(v, "%.4g");
         o << "<tr><td class=l>" << htmlEscape(w.effect) << "</td><td>" << htmlEscape(w.sizeParam) << " = " << fmt(w.size, "%.4g")
-          << " " << htmlEscape(w.unit) << "</td><td>" << fmt(w.snr, "%.2f") << "</td><td>" << fmt(w.visibleSnr, "%.2f")
+          << " " << htmlEscape(w.unit) << shape << "</td><td>" << fmt(w.snr, "%.2f") << "</td><td>" << fmt(w.visibleSnr, "%.2f")
           << "</td><td>" << w.detected << "/" << w.replicas << "</td><td>" << w.confused
           << (confused.empty() ? "" : " (" + confused + ")") << "</td><td>" << w.missed << "</td><td class=l>"
           << htmlEscape(w.note) << "</td></tr>\n";

@@ -30,6 +30,26 @@ ParamIssues SelfTestOptions::validate() const {
         const EffectParam& q = info.params.front();
         if (!std::isfinite(v)) note("sizes", "self-test size of " + name + "." + q.name + " = " + std::to_string(v) + " is not finite");
     }
+    for (const auto& [key, v] : shape) {
+        const size_t dot = key.find('.');
+        EffectInfo info;
+        if (dot == std::string::npos || !findEffect(key.substr(0, dot), info)) {
+            note("shape", "self-test parameter '" + key + "': expected EFFECT.PARAMETER with a catalogue effect");
+            continue;
+        }
+        const std::string param = key.substr(dot + 1);
+        const auto q = std::find_if(info.params.begin(), info.params.end(), [&](const EffectParam& e) { return e.name == param; });
+        if (q == info.params.end()) {
+            std::string names;
+            for (size_t i = 1; i < info.params.size(); ++i) names += (i > 1 ? ", " : "") + info.params[i].name;
+            note("shape", "self-test parameter '" + key + "': " + info.name + " has no parameter '" + param + "'" +
+                              (names.empty() ? " (it has only its size parameter)" : " (its other parameters: " + names + ")"));
+        } else if (q == info.params.begin()) {
+            note("shape", "self-test parameter '" + key + "' is the size parameter: state it as " + info.name + "=VALUE");
+        } else if (!std::isfinite(v)) {
+            note("shape", "self-test parameter " + key + " = " + std::to_string(v) + " is not finite");
+        }
+    }
     return out;
 }
 
@@ -286,13 +306,24 @@ struct SelfTestRun {
         return true;
     }
 
+    // The baseline's values with effect c at `size`, its other parameters at their starts or as
+    // stated (SelfTestOptions::shape).
+    std::map<std::string, double> injectedValues(const std::string& c, double size) const {
+        EffectInfo info;
+        findEffect(c, info);
+        std::map<std::string, double> vals = effectStart(cx, c, base.values);
+        for (const auto& [key, v] : so.shape)
+            if (key.compare(0, c.size() + 1, c + ".") == 0) vals[key] = v;
+        vals[c + "." + info.params.front().name] = size;
+        return vals;
+    }
+
     // The injected signal r(baseline + effect at size) − r(reference) on the compared samples.
     void inject(size_t ci, double size, Injection& inj) const {
         const std::string& c = cands[ci];
         EffectInfo info;
         findEffect(c, info);
-        std::map<std::string, double> vals = effectStart(cx, c, base.values);
-        vals[c + "." + info.params.front().name] = size;
+        const std::map<std::string, double> vals = injectedValues(c, size);
         Spec s2 = spec;
         s2.effects.push_back(c);
         std::vector<double> r;
@@ -318,6 +349,19 @@ struct SelfTestRun {
             if (!(v >= q.lower && v <= q.upper))
                 return stop("self-test size of " + name + "." + q.name + " = " + std::to_string(v) + " " + q.unit +
                             " is outside its physical range [" + std::to_string(q.lower) + ", " + std::to_string(q.upper) + "]");
+        }
+        for (const auto& [key, v] : so.shape) {
+            const std::string name = key.substr(0, key.find('.'));
+            if (std::find(cands.begin(), cands.end(), name) == cands.end())
+                return stop("self-test parameter given for " + name + ", which is not among the candidates");
+            EffectInfo info;
+            findEffect(name, info);
+            for (const EffectParam& q0 : info.params) {
+                const EffectParam q = scaledParam(q0, cx.muScale);
+                if (name + "." + q.name == key && !(v >= q.lower && v <= q.upper))
+                    return stop("self-test parameter " + key + " = " + std::to_string(v) + " " + q.unit +
+                                " is outside its physical range [" + std::to_string(q.lower) + ", " + std::to_string(q.upper) + "]");
+            }
         }
         return true;
     }
@@ -415,6 +459,8 @@ struct SelfTestRun {
         row.sizeParam = info.params.front().name;
         row.unit = info.params.front().unit;
         row.level = job.level;
+        for (const auto& [key, v] : so.shape)
+            if (key.compare(0, c.size() + 1, c + ".") == 0) row.shape[key.substr(c.size() + 1)] = v;
         row.note = job.inj.note;
         if (row.note.empty() && job.level > 0 && std::abs(job.inj.rms / out.noiseRms - job.level) > 0.1 * job.level)
             row.note = "nearest size within the physical range";
@@ -444,9 +490,7 @@ struct SelfTestRun {
         }
         // The injected candidate linearised where the effect is (a fit would start there after its scan).
         LinearCandidate atSize;
-        std::map<std::string, double> vals = effectStart(cx, c, base.values);
-        vals[c + "." + row.sizeParam] = job.inj.size;
-        linearise(c, vals, atSize);
+        linearise(c, injectedValues(c, job.inj.size), atSize);
         std::vector<const LinearCandidate*> cs = all;
         if (h)
             for (size_t i = 0; i < h->lin.size(); ++i) cs[i] = &h->lin[i];
@@ -532,6 +576,7 @@ nlohmann::json toJson(const SelfTestResult& r) {
         x["missed"] = w.missed;
         x["detection_rate"] = w.replicas > 0 ? static_cast<double>(w.detected) / w.replicas : 0.0;
         x["confused_with"] = w.confusedWith;
+        if (!w.shape.empty()) x["shape"] = w.shape;
         if (!w.note.empty()) x["note"] = w.note;
         rows.push_back(x);
     }

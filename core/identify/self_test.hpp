@@ -17,7 +17,8 @@
 //
 // Sizes: stated per effect (SelfTestOptions::sizes, in the size parameter's unit), or found for a
 // signal level: the size whose injected signal has RMS = level × the baseline residual's RMS over
-// the compared samples (bisection between the vanishing value and the physical bound).
+// the compared samples (bisection between the vanishing value and the physical bound). The
+// effect's other parameters are injected at their starts, or as stated (SelfTestOptions::shape).
 #pragma once
 
 #include <map>
@@ -34,6 +35,9 @@ struct SelfTestOptions {
     int replicas = 0;                       // noise replicas per effect and level (0: no self-test)
     std::vector<double> levels = {0.5};     // injected signal RMS / baseline residual RMS
     std::map<std::string, double> sizes;    // effect -> stated value of its size parameter (replaces the levels)
+    // "effect.param" -> the value of one of its other parameters in the injection (default: the
+    // effect's start), e.g. stick_healing.tc_s: an effect stated in full, as an answer key gives it.
+    std::map<std::string, double> shape;
     // Every problem, each naming the field, the value and the allowed range; empty when valid.
     ParamIssues validate() const;
 };
@@ -47,6 +51,7 @@ struct SelfTestRow {
     double visibleSnr = 0;    // the same for the part of the signal the baseline's (linearised) refit cannot mimic
     int replicas = 0, detected = 0, confused = 0, missed = 0;
     std::map<std::string, int> confusedWith;  // the effect picked instead, how often
+    std::map<std::string, double> shape;      // the effect's other parameters as injected (SelfTestOptions::shape)
     std::string note;         // e.g. the level was not reached within the physical bounds
 };
 

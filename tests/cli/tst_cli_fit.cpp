@@ -293,7 +293,9 @@ private slots:
         for (const Bad& b : {Bad{{"--self-test-replicas", "0"}, "--self-test-replicas = 0"},
                              Bad{{"--self-test-levels", "0.5,-1"}, "level = -1"},
                              Bad{{"--self-test-size", "backlash"}, "--self-test-size 'backlash'"},
-                             Bad{{"--self-test-size", "no_such=1"}, "no_such"}}) {
+                             Bad{{"--self-test-size", "no_such=1"}, "no_such"},
+                             Bad{{"--self-test-size", "backlash.halfWidth_m=1e-3"}, "is the size parameter"},
+                             Bad{{"--self-test-size", "stick_healing.no_such=1"}, "its other parameters: tc_s, Dh_m"}}) {
             const QString rep = dir.filePath("bad.json");
             const Result r = runCli(base + b.extra + QStringList{"--report", rep});
             QVERIFY2(r.exitCode == 2, r.err.constData());

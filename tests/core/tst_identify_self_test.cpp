@@ -6,6 +6,7 @@
 
 #include <atomic>
 
+#include "core/identify/report_html.hpp"
 #include "identify_synth.hpp"
 
 using namespace stickslip::identify;
@@ -109,6 +110,29 @@ private slots:
         }
         QCOMPARE(a.selfTest.falseAlarms, b.selfTest.falseAlarms);
     }
+    // An effect stated in full (an answer key's form): its other parameters are injected as given
+    // and reported on its row. A younger contact age scale t_c heals more (b ln(1 + θ/t_c) grows
+    // as t_c falls at every age θ), so the same b gives a larger signal.
+    void statedShapeIsInjectedAndReported() {
+        IdentifyOptions o = selfTestOptions({}, 3);
+        o.candidates = {"stick_healing"};
+        o.selfTest.sizes = {{"stick_healing", 0.02}};
+        const IdentifyResult a = identifyEffects(runs(), o);
+        o.selfTest.shape = {{"stick_healing.tc_s", 1e-3}, {"stick_healing.Dh_m", 5e-5}};
+        const IdentifyResult b = identifyEffects(runs(), o);
+        QVERIFY2(a.selfTest.ok && b.selfTest.ok, (a.selfTest.message + b.selfTest.message).c_str());
+        QCOMPARE(a.selfTest.rows.size(), size_t(1));
+        QCOMPARE(b.selfTest.rows.size(), size_t(1));
+        QVERIFY(a.selfTest.rows[0].shape.empty());
+        QCOMPARE(b.selfTest.rows[0].shape.at("tc_s"), 1e-3);
+        QCOMPARE(b.selfTest.rows[0].shape.at("Dh_m"), 5e-5);
+        QCOMPARE(b.selfTest.rows[0].size, 0.02);
+        QCOMPARE(toJson(b.selfTest)["rows"][0]["shape"]["tc_s"].get<double>(), 1e-3);
+        QVERIFY(renderHtmlReport(b).find("b_heal = 0.02 -, Dh_m = 5e-05, tc_s = 0.001") != std::string::npos);
+        qInfo("stick_healing b = 0.02: signal RMS %.4g at t_c = 0.01 s (its start), %.4g at t_c = 1 ms",
+              a.selfTest.rows[0].signalRms, b.selfTest.rows[0].signalRms);
+        QVERIFY(b.selfTest.rows[0].signalRms > 1.05 * a.selfTest.rows[0].signalRms);
+    }
     // The self-test's verdict for a stated size agrees with the full loop: a 10 ms lag is found
     // by both; at 0.1 ms the self-test sees nothing, and the loop adds nothing to the same runs
     // without a lag. (The runs dwell at the turning points and the loop uses every second
@@ -160,6 +184,32 @@ private slots:
         QVERIFY2(r.selfTest.message.find("backlash.halfWidth_m") != std::string::npos &&
                      r.selfTest.message.find("physical range") != std::string::npos,
                  r.selfTest.message.c_str());
+        // An effect's other parameters: named EFFECT.PARAMETER, never its size parameter.
+        s.sizes.clear();
+        for (const auto& [key, says] : std::vector<std::pair<std::string, std::string>>{
+                 {"nosuch.tc_s", "expected EFFECT.PARAMETER"},
+                 {"stick_healing", "expected EFFECT.PARAMETER"},
+                 {"stick_healing.tau", "stick_healing has no parameter 'tau' (its other parameters: tc_s, Dh_m)"},
+                 {"backlash.halfWidth_m", "is the size parameter: state it as backlash=VALUE"}}) {
+            s.shape = {{key, 1e-3}};
+            const std::string msg = formatIssues(s.validate());
+            QVERIFY2(msg.find(says) != std::string::npos, msg.c_str());
+        }
+        s.shape = {{"stick_healing.tc_s", std::nan("")}};
+        QVERIFY(formatIssues(s.validate()).find("stick_healing.tc_s = nan is not finite") != std::string::npos);
+        o.candidates = {"stick_healing"};
+        o.selfTest.sizes = {{"stick_healing", 0.02}};
+        o.selfTest.shape = {{"stick_healing.tc_s", 100.0}};  // t_c's physical range ends at 10 s
+        const IdentifyResult r2 = identifyEffects(runs(), o);
+        QVERIFY(r2.selfTest.ran && !r2.selfTest.ok);
+        QVERIFY2(r2.selfTest.message.find("stick_healing.tc_s = 100") != std::string::npos &&
+                     r2.selfTest.message.find("physical range") != std::string::npos,
+                 r2.selfTest.message.c_str());
+        o.candidates = {"backlash"};
+        o.selfTest.sizes = {{"backlash", 1e-5}};
+        const IdentifyResult r3 = identifyEffects(runs(), o);  // stick_healing's parameter, stick_healing not tried
+        QVERIFY(r3.selfTest.ran && !r3.selfTest.ok);
+        QVERIFY2(r3.selfTest.message.find("not among the candidates") != std::string::npos, r3.selfTest.message.c_str());
     }
     // Cancelling during the self-test stops the run with a cancelled result.
     void cancelStopsTheSelfTest() {
