@@ -72,3 +72,5 @@ def test_identify_self_test_equals_cli_report(cli, damper, tmp_path):
     assert rows[-1]["effect"] == "backlash" and rows[-1]["size"] == 1e-3 and rows[-1]["replicas"] == 4
     with pytest.raises(ValueError, match="self-test-size 'backlash'"):
         stickslip.identify(data, setup="prescribed", self_test=True, self_test_size=["backlash"])
+    with pytest.raises(ValueError, match="is the size parameter: state it as backlash=VALUE"):
+        stickslip.identify(data, setup="prescribed", self_test=True, self_test_size={"backlash.halfWidth_m": 1e-3})
