@@ -144,7 +144,8 @@ nlohmann::json selectionJson(const IdentifyResult& r) {
                                     "consistently over the held-out runs (one-sided exact sign-flip test on ln MSE ratios when 2^-K < alpha, else the "
                                     "paired t-test, p < alpha) "
                                     "AND its size parameter must differ from its vanishing value by more than t_(K-1,1-alpha/2) "
-                                    "jackknife standard errors over the leave-one-run-out fits"},
+                                    "standard errors: the jackknife over the leave-one-run-out fits or, where larger, the "
+                                    "Jacobian's x sqrt(tau_int)"},
                       {"null_alpha", num(r.nullAlpha)}, {"null_replicas", r.nullReplicas}, {"bic_margin", num(r.bicMargin)},
                       {"held_out_alpha", num(r.heldOutAlpha)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
                       {"tau_int_samples", num(r.tauInt)},

@@ -148,7 +148,8 @@ bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit
                     const std::vector<std::map<std::string, double>>& loo, double tauInt) {
     const IdentifyOptions& opt = *cx.opt;
     // The size parameter differs from the value at which the effect vanishes by more than
-    // t_{K−1, 1−α/2} jackknife standard errors over the leave-one-run-out fits.
+    // t_{K−1, 1−α/2} jackknife standard errors over the leave-one-run-out fits (or Jacobian ones,
+    // where larger or where there are fewer than three such fits).
     EffectInfo info;
     findEffect(sc.name, info);
     if (info.params.empty()) return true;
@@ -161,21 +162,27 @@ bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit
     std::vector<double> jk;
     for (const auto& m : loo)
         if (m.count(key)) jk.push_back(size(m.at(key)));
-    double se = kNaN, crit = kNaN;
+    // The Jacobian standard error made honest for autocorrelated residuals (× sqrt(τ_int)).
+    double jse = kNaN;
+    for (const ParamEstimate& p : fit.estimates)
+        if (p.name == key) jse = p.stderr_;
+    if (std::isfinite(jse) && inverse && fit.values.count(key)) jse /= fit.values.at(key) * fit.values.at(key);
+    jse *= std::sqrt(std::max(tauInt, 1.0));
+    double se = jse, crit = studentTQuantile(1.0 - 0.5 * opt.identifiabilityAlpha, 1e9);
+    sc.sizeStderrKind = "Jacobian x sqrt(tau_int)";
     if (jk.size() >= static_cast<size_t>(kMinUnitsForTests)) {
-        se = jackknifeStderr(jk);
+        // With K ≥ 3 leave-one-run-out fits: the jackknife, t_{K−1} quantile, unless the Jacobian's
+        // is larger (fit's convention): refits that all stop at one value (stalled on a bound,
+        // fit.cpp's solveFrom) give a jackknife of 0, which is no evidence of a size.
+        const double jack = jackknifeStderr(jk);
         crit = studentTQuantile(1.0 - 0.5 * opt.identifiabilityAlpha, static_cast<double>(jk.size()) - 1.0);
-        sc.sizeStderrKind = "jackknife over " + std::to_string(jk.size()) + " leave-one-run-out fits";
-    } else {
-        // Fewer than 3 leave-one-run-out fits (validation runs given, or 2 runs): the Jacobian
-        // standard error made honest for autocorrelated residuals (× sqrt(τ_int)), normal quantile.
-        double jse = kNaN;
-        for (const ParamEstimate& p : fit.estimates)
-            if (p.name == key) jse = p.stderr_;
-        if (std::isfinite(jse) && inverse && fit.values.count(key)) jse /= fit.values.at(key) * fit.values.at(key);
-        se = jse * std::sqrt(std::max(tauInt, 1.0));
-        crit = studentTQuantile(1.0 - 0.5 * opt.identifiabilityAlpha, 1e9);
-        sc.sizeStderrKind = "Jacobian x sqrt(tau_int)";
+        const std::string kind = "jackknife over " + std::to_string(jk.size()) + " leave-one-run-out fits";
+        if (!(jse > jack)) {
+            se = jack;
+            sc.sizeStderrKind = kind;
+        } else {
+            sc.sizeStderrKind += " (larger than the " + kind + ")";
+        }
     }
     sc.sizeParam = inverse ? "1/" + q.name : q.name;
     sc.sizeValue = value;

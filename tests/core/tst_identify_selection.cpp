@@ -90,6 +90,41 @@ private slots:
         QVERIFY2(sc.reason.find("no held-out error") != std::string::npos, sc.reason.c_str());
     }
 
+    // Leave-one-run-out refits that all end at one value (stalled where they started, session 34:
+    // a backlash's refits on active bounds) give a jackknife standard error of 0. That is not
+    // evidence of a size: the size test takes the larger of the jackknife and the Jacobian
+    // (× sqrt(τ_int)) standard errors, as fit's stderr does, and fails here; with the jackknife
+    // alone it passed.
+    void aJackknifeOfZeroIsNotEvidenceOfSize() {
+        static const IdentifyOptions opt;
+        Context cx;
+        cx.opt = &opt;
+        const ModelErrors ref = errors({0.10, 0.11, 0.12, 0.10, 0.13});
+        const ModelErrors with = errors({0.05, 0.06, 0.05, 0.07, 0.05});
+        FitOutcome fit;
+        fit.values["backlash.halfWidth_m"] = 2e-6;
+        fit.estimates.push_back({"backlash.halfWidth_m", 2e-6, 1e-6});  // Jacobian s.e.
+        const std::vector<std::map<std::string, double>> stalled(5, {{"backlash.halfWidth_m", 2e-6}});
+        CandidateScore sc;
+        sc.name = "backlash";
+        QVERIFY(!passesSelection(cx, sc, fit, ref, with, stalled, {0, 1, 2, 3, 4}, 4.0));
+        QCOMPARE(sc.sizeStderr, 2e-6);  // 1e-6 × sqrt(4)
+        QVERIFY2(sc.reason.find("is not identified") != std::string::npos, sc.reason.c_str());
+        QVERIFY2(sc.sizeStderrKind.find("Jacobian") != std::string::npos, sc.sizeStderrKind.c_str());
+        // Refits that spread: the jackknife is the larger and decides (it passes).
+        const std::vector<std::map<std::string, double>> spread = {{{"backlash.halfWidth_m", 1.9e-6}},
+                                                                   {{"backlash.halfWidth_m", 2.1e-6}},
+                                                                   {{"backlash.halfWidth_m", 2.0e-6}},
+                                                                   {{"backlash.halfWidth_m", 1.95e-6}},
+                                                                   {{"backlash.halfWidth_m", 2.05e-6}}};
+        fit.estimates.front().stderr_ = 1e-9;
+        CandidateScore sc2;
+        sc2.name = "backlash";
+        QVERIFY2(passesSelection(cx, sc2, fit, ref, with, spread, {0, 1, 2, 3, 4}, 4.0), sc2.reason.c_str());
+        QVERIFY2(sc2.sizeStderrKind.find("jackknife") != std::string::npos, sc2.sizeStderrKind.c_str());
+        QVERIFY(sc2.sizeStderr > 1e-8);
+    }
+
     // Five runs that all improve by very different amounts (D03's lag): the exact sign-flip
     // test decides (p = 1/32), and the pooled and paired held-out tests pass.
     void heterogeneousGainsPassTheExactTest() {
