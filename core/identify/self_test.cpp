@@ -306,14 +306,21 @@ struct SelfTestRun {
         return true;
     }
 
+    // Effect c's stated other parameters (SelfTestOptions::shape), by parameter name.
+    std::map<std::string, double> shapeOf(const std::string& c) const {
+        std::map<std::string, double> out;
+        for (const auto& [key, v] : so.shape)
+            if (key.compare(0, c.size() + 1, c + ".") == 0) out[key.substr(c.size() + 1)] = v;
+        return out;
+    }
+
     // The baseline's values with effect c at `size`, its other parameters at their starts or as
-    // stated (SelfTestOptions::shape).
+    // stated.
     std::map<std::string, double> injectedValues(const std::string& c, double size) const {
         EffectInfo info;
         findEffect(c, info);
         std::map<std::string, double> vals = effectStart(cx, c, base.values);
-        for (const auto& [key, v] : so.shape)
-            if (key.compare(0, c.size() + 1, c + ".") == 0) vals[key] = v;
+        for (const auto& [name, v] : shapeOf(c)) vals[c + "." + name] = v;
         vals[c + "." + info.params.front().name] = size;
         return vals;
     }
@@ -321,8 +328,6 @@ struct SelfTestRun {
     // The injected signal r(baseline + effect at size) − r(reference) on the compared samples.
     void inject(size_t ci, double size, Injection& inj) const {
         const std::string& c = cands[ci];
-        EffectInfo info;
-        findEffect(c, info);
         const std::map<std::string, double> vals = injectedValues(c, size);
         Spec s2 = spec;
         s2.effects.push_back(c);
@@ -459,8 +464,7 @@ struct SelfTestRun {
         row.sizeParam = info.params.front().name;
         row.unit = info.params.front().unit;
         row.level = job.level;
-        for (const auto& [key, v] : so.shape)
-            if (key.compare(0, c.size() + 1, c + ".") == 0) row.shape[key.substr(c.size() + 1)] = v;
+        row.shape = shapeOf(c);
         row.note = job.inj.note;
         if (row.note.empty() && job.level > 0 && std::abs(job.inj.rms / out.noiseRms - job.level) > 0.1 * job.level)
             row.note = "nearest size within the physical range";
