@@ -6,6 +6,7 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QLineEdit>
+#include <QRegularExpression>
 #include <QSpinBox>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -42,14 +43,24 @@ SelfTestView::SelfTestView(QWidget* parent) : QWidget(parent) {
     row->addWidget(new QLabel(tr("levels"), this));
     row->addWidget(levels_, 1);
     v->addLayout(row);
+    auto* row2 = new QHBoxLayout;
+    stated_ = new QLineEdit(this);
+    stated_->setPlaceholderText(tr("e.g. stick_healing=0.0115 stick_healing.tc_s=0.00157"));
+    stated_->setToolTip(tr("Effects stated in full, as an answer key or a paper gives them: EFFECT=VALUE sets the size "
+                           "parameter (SI units) and replaces the levels for that effect; EFFECT.PARAMETER=VALUE sets one of "
+                           "its other parameters (default: its start). Separate items by spaces, commas or semicolons."));
+    row2->addWidget(new QLabel(tr("stated"), this));
+    row2->addWidget(stated_, 1);
+    v->addLayout(row2);
     summary_ = new QLabel(this);
     summary_->setWordWrap(true);
     v->addWidget(summary_);
-    table_ = new QTableWidget(0, 8, this);
+    table_ = new QTableWidget(0, 9, this);
     table_->setHorizontalHeaderLabels({tr("Effect"), tr("Size"), tr("SNR"), tr("visible"), tr("detected"), tr("confused"),
-                                       tr("missed"), tr("Note")});
+                                       tr("missed"), tr("Shape"), tr("Note")});
     table_->horizontalHeaderItem(2)->setToolTip(tr("RMS of the injected signal / RMS of the baseline residual"));
     table_->horizontalHeaderItem(3)->setToolTip(tr("The same for the part of the signal the baseline's refit cannot mimic"));
+    table_->horizontalHeaderItem(7)->setToolTip(tr("The effect's other parameters as stated (blank: injected at their starts)"));
     table_->verticalHeader()->setVisible(false);
     table_->verticalHeader()->setDefaultSectionSize(22);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
@@ -61,6 +72,7 @@ SelfTestView::SelfTestView(QWidget* parent) : QWidget(parent) {
     auto sync = [this](bool on) {
         replicas_->setEnabled(on);
         levels_->setEnabled(on);
+        stated_->setEnabled(on);
     };
     connect(enabled_, &QCheckBox::toggled, this, sync);
     sync(false);
@@ -68,6 +80,7 @@ SelfTestView::SelfTestView(QWidget* parent) : QWidget(parent) {
 
 void SelfTestView::setEnabledTest(bool on) { enabled_->setChecked(on); }
 void SelfTestView::setLevels(const QString& text) { levels_->setText(text); }
+void SelfTestView::setStated(const QString& text) { stated_->setText(text); }
 
 bool SelfTestView::apply(IdentifyOptions& o, QString& why) const {
     o.selfTest = SelfTestOptions{};
@@ -82,6 +95,13 @@ bool SelfTestView::apply(IdentifyOptions& o, QString& why) const {
             return false;
         }
         o.selfTest.levels.push_back(l);
+    }
+    std::vector<std::string> items;
+    for (const QString& part : stated_->text().split(QRegularExpression(QStringLiteral("[\\s,;]+")), Qt::SkipEmptyParts))
+        items.push_back(part.toStdString());
+    if (std::string e; !o.selfTest.parseStated(items, e)) {
+        why = tr("Self-test, stated: %1").arg(QString::fromStdString(e));
+        return false;
     }
     const std::string err = formatIssues(o.selfTest.validate());
     if (!err.empty()) {
@@ -124,8 +144,12 @@ void SelfTestView::show(const SelfTestResult& r) {
         cell(table_, row, 4, QStringLiteral("%1/%2").arg(w.detected).arg(w.replicas));
         cell(table_, row, 5, QString::number(w.confused), confused.join(", "));
         cell(table_, row, 6, QString::number(w.missed));
-        cell(table_, row, 7, QString::fromStdString(w.note), QString::fromStdString(w.note));
+        QStringList shape;
+        for (const auto& [name, v] : w.shape) shape << QStringLiteral("%1 = %2").arg(QString::fromStdString(name)).arg(v, 0, 'g', 4);
+        cell(table_, row, 7, shape.join(QStringLiteral(", ")));
         table_->item(row, 7)->setTextAlignment(Qt::AlignLeft | Qt::AlignVCenter);
+        cell(table_, row, 8, QString::fromStdString(w.note), QString::fromStdString(w.note));
+        table_->item(row, 8)->setTextAlignment(Qt::AlignLeft | Qt::AlignVCenter);
     }
     table_->resizeColumnsToContents();
     int h = table_->horizontalHeader()->height() + 4;

@@ -249,20 +249,8 @@ bool runIdentifyRequest(const IdentifyRequest& o, IdentifyResult& res, nlohmann:
         opt.selfTest.levels = o.selfTestLevels;
         opt.selfTest.sizes.clear();
         opt.selfTest.shape.clear();
-        for (const std::string& sz : o.selfTestSizes) {
-            const size_t eq = sz.find('=');
-            double v = 0;
-            const std::string txt = eq == std::string::npos ? std::string() : sz.substr(eq + 1);
-            char* end = nullptr;
-            if (!txt.empty()) v = std::strtod(txt.c_str(), &end);
-            if (eq == std::string::npos || eq == 0 || txt.empty() || end == txt.c_str() || *end != '\0')
-                return fail(status, PipelineCode::BadArguments,
-                            "--self-test-size '" + sz + "': expected EFFECT=VALUE, e.g. backlash=1e-4 (the effect's size parameter in SI units), "
-                            "or EFFECT.PARAMETER=VALUE for another of its parameters, e.g. stick_healing.tc_s=0.002");
-            const std::string key = sz.substr(0, eq);
-            if (key.find('.') != std::string::npos) opt.selfTest.shape[key] = v;
-            else opt.selfTest.sizes[key] = v;
-        }
+        if (std::string e; !opt.selfTest.parseStated(o.selfTestSizes, e))
+            return fail(status, PipelineCode::BadArguments, "--self-test-size " + e);
     }
     if (const ParamIssues why = opt.validate(); !why.empty())
         return fail(status, PipelineCode::BadArguments, formatIssues(why));

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -51,6 +52,24 @@ ParamIssues SelfTestOptions::validate() const {
         }
     }
     return out;
+}
+
+bool SelfTestOptions::parseStated(const std::vector<std::string>& items, std::string& error) {
+    for (const std::string& item : items) {
+        const size_t eq = item.find('=');
+        const std::string txt = eq == std::string::npos ? std::string() : item.substr(eq + 1);
+        char* end = nullptr;
+        const double v = txt.empty() ? 0.0 : std::strtod(txt.c_str(), &end);
+        if (eq == std::string::npos || eq == 0 || txt.empty() || end == txt.c_str() || *end != '\0') {
+            error = "'" + item + "': expected EFFECT=VALUE, e.g. backlash=1e-4 (the effect's size parameter in SI units), "
+                    "or EFFECT.PARAMETER=VALUE for another of its parameters, e.g. stick_healing.tc_s=0.002";
+            return false;
+        }
+        const std::string key = item.substr(0, eq);
+        if (key.find('.') != std::string::npos) shape[key] = v;
+        else sizes[key] = v;
+    }
+    return true;
 }
 
 namespace detail {

@@ -40,6 +40,11 @@ struct SelfTestOptions {
     std::map<std::string, double> shape;
     // Every problem, each naming the field, the value and the allowed range; empty when valid.
     ParamIssues validate() const;
+    // Reads stated injections into `sizes` (EFFECT=VALUE, the size parameter in SI units) and
+    // `shape` (EFFECT.PARAMETER=VALUE), as the CLI's --self-test-size and the app's field give
+    // them. False, with `error` naming the item, at the first item that is not of that form;
+    // whether the names and values are allowed is validate()'s to say.
+    bool parseStated(const std::vector<std::string>& items, std::string& error);
 };
 
 struct SelfTestRow {

@@ -165,6 +165,30 @@ private slots:
             QCOMPARE(w->detected == 0, !found);
         }
     }
+    // Stated injections as the CLI and the app give them: sizes and other parameters sorted by
+    // the dot, the first malformed item named (and nothing after it read).
+    void statedInjectionsParse() {
+        SelfTestOptions s;
+        std::string e;
+        QVERIFY(s.parseStated({"stick_healing=0.0115", "stick_healing.tc_s=1.57e-3", "backlash=2e-4"}, e));
+        QCOMPARE(s.sizes.size(), size_t(2));
+        QCOMPARE(s.sizes.at("stick_healing"), 0.0115);
+        QCOMPARE(s.sizes.at("backlash"), 2e-4);
+        QCOMPARE(s.shape.size(), size_t(1));
+        QCOMPARE(s.shape.at("stick_healing.tc_s"), 1.57e-3);
+        QVERIFY(s.validate().empty());
+        for (const std::string bad : {"backlash", "=1", "backlash=", "backlash=1e-4x", "backlash=abc"}) {
+            SelfTestOptions t;
+            QVERIFY(!t.parseStated({"wear_drift=0.1", bad, "backlash=1e-4"}, e));
+            QVERIFY2(e.find("'" + bad + "': expected EFFECT=VALUE") != std::string::npos, e.c_str());
+            QCOMPARE(t.sizes.count("backlash"), size_t(0));
+        }
+        // Names are validate()'s to judge.
+        SelfTestOptions u;
+        QVERIFY(u.parseStated({"no_such=1"}, e));
+        QVERIFY(formatIssues(u.validate()).find("no_such") != std::string::npos);
+    }
+
     void badOptionsAreNamed() {
         SelfTestOptions s;
         s.replicas = -1;

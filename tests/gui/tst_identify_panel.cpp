@@ -353,6 +353,44 @@ private slots:
         }
     }
 
+    // Effects stated in full from the panel: the field reads as the CLI's --self-test-size, a
+    // malformed item or a parameter the effect does not have is refused with its name before
+    // any job starts, and the table shows the shape a row was injected with.
+    void selfTestStatesEffectsInFull() {
+        IdentifyPanel p;
+        QVERIFY(p.loadRuns(damperRuns()));
+        SelfTestView* st = p.selfTestView();
+        st->setEnabledTest(true);
+        st->setStated("stick_healing=0.0115, stick_healing.tc_s=1.57e-3;backlash=2e-4");
+        IdentifyOptions o;
+        QString why;
+        QVERIFY2(st->apply(o, why), qPrintable(why));
+        QCOMPARE(o.selfTest.sizes.at("stick_healing"), 0.0115);
+        QCOMPARE(o.selfTest.sizes.at("backlash"), 2e-4);
+        QCOMPARE(o.selfTest.shape.at("stick_healing.tc_s"), 1.57e-3);
+        for (const auto& [text, says] : std::vector<std::pair<QString, QString>>{
+                 {"stick_healing=0.01 backlash", "'backlash': expected EFFECT=VALUE"},
+                 {"stick_healing.tau=1e-3", "stick_healing has no parameter 'tau'"}}) {
+            st->setStated(text);
+            QVERIFY(!st->apply(o, why));
+            QVERIFY2(why.contains(says), qPrintable(why));
+            p.identifyRunButton()->click();
+            QVERIFY(!p.worker()->isBusy());
+            QVERIFY2(p.identifyStatus().contains(says), qPrintable(p.identifyStatus()));
+        }
+        SelfTestResult r;
+        r.ran = r.ok = true;
+        SelfTestRow w;
+        w.effect = "stick_healing";
+        w.size = 0.0115;
+        w.replicas = w.detected = 20;
+        w.shape = {{"tc_s", 1.57e-3}, {"Dh_m", 1.66e-5}};
+        r.rows.push_back(w);
+        st->show(r);
+        QCOMPARE(cell(st->table(), 0, 7), QStringLiteral("Dh_m = 1.66e-05, tc_s = 0.00157"));
+        QCOMPARE(st->table()->horizontalHeaderItem(7)->text(), QStringLiteral("Shape"));
+    }
+
     // The panel lives in the main window's "Identify" dock, opened from Data ▸ Identify….
     void dockInMainWindow() {
         MainWindow w(false);
