@@ -57,7 +57,9 @@ double slipEpisodes(const Context& cx, const std::vector<size_t>& fitIdx, double
 void scoreFit(const Loop& L, Tried& t) {
     CandidateScore& sc = t.sc;
     const FitOutcome& f = t.fit;
-    sc.deltaBic = L.bicOf(f, t.spec, t.spec.segments == L.spec.segments ? L.curDiag.integratedAcfTime : 1.0) - t.bicBase;
+    const double tauInt = t.spec.segments == L.spec.segments ? L.curDiag.integratedAcfTime : 1.0;
+    sc.deltaBic = L.bicOf(f, t.spec, tauInt) - t.bicBase;
+    sc.neff = std::max(std::min(static_cast<double>(f.count), L.neffCap(f, t.spec, tauInt, &sc.neffLimit)), 2.0);
     sc.fitNrmse = f.nrmse(0.0);
     sc.params = effectParams(f, sc.name);
     sc.sizeCorrelation = sizeCorrelations(f.fit, sc.name);
@@ -252,9 +254,13 @@ int selectCandidate(Loop& L, Round& R, std::vector<Tried>& tried, ModelErrors& m
     for (size_t ti = 0; ti < tried.size(); ++ti) {
         CandidateScore& sc = tried[ti].sc;
         if (!(sc.deltaBic < -L.opt.bicMargin)) {
+            // The margin cannot tell noise from a real gain the runs support weakly: say how much
+            // evidence they could give (n_eff), not that noise explains it.
             sc.reason = std::string(ti == 0 ? "best candidate of " + R.label() + " but " : "") + "dBIC = " +
                         std::to_string(sc.deltaBic) + " is not below -" + std::to_string(L.opt.bicMargin) +
-                        ": improvement within what noise explains";
+                        " with n_eff = " + std::to_string(static_cast<long>(std::lround(sc.neff))) + " (" + sc.neffLimit +
+                        "): its fit NRMSE " + std::to_string(sc.fitNrmse) +
+                        " is not strong evidence for it on these runs";
             continue;
         }
         if (chosen >= 0) {

@@ -47,8 +47,14 @@ struct Loop {
     // The same criterion for the model of `f` at another sum of squares `ss` (same data, same
     // free parameters).
     double bicAt(double ss, const FitOutcome& f, const Spec& s, double tauInt) const {
-        const double cap = std::min(f.count / std::max(tauInt, 1.0), s.segments ? std::max(segEpisodes, 2.0) : episodes);
-        return bic(ss, f.count, cap, f.nFree);
+        return bic(ss, f.count, neffCap(f, s, tauInt), f.nFree);
+    }
+    // The cap on n_eff (bic() also keeps it within [2, n]) and, in `limit`, what sets it.
+    double neffCap(const FitOutcome& f, const Spec& s, double tauInt, std::string* limit = nullptr) const {
+        const double byAcf = f.count / std::max(tauInt, 1.0);
+        const double units = s.segments ? std::max(segEpisodes, 2.0) : episodes;
+        if (limit) *limit = units < byAcf ? (s.segments ? "segments" : "slip episodes") : "independent residuals (n/tau_int)";
+        return std::min(byAcf, units);
     }
     std::string residualName(const Spec& s) const {
         return !cx.anyDynamics ? std::string("prescribed") : s.segments ? std::string("segments") : std::string("equation_error");

@@ -97,6 +97,8 @@ nlohmann::json candidateJson(const CandidateScore& c) {
                           {"applicable", c.applicable},
                           {"accepted", c.accepted},
                           {"score", {{"delta_bic", num(c.deltaBic)}, {"fit_nrmse", num(c.fitNrmse)},
+                                     {"n_eff", c.neff > 0 ? num(c.neff) : nlohmann::json(nullptr)},
+                                     {"n_eff_limit", c.neffLimit.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.neffLimit)},
                                      {"held_out_nrmse", c.heldOutNrmse >= 0 ? num(c.heldOutNrmse) : nlohmann::json(nullptr)}}},
                           {"residual", c.residual},
                           {"held_out_test", c.heldOutUnits == 0 ? nlohmann::json(nullptr)
