@@ -59,7 +59,7 @@ void scoreFit(const Loop& L, Tried& t) {
     const FitOutcome& f = t.fit;
     const double tauInt = t.spec.segments == L.spec.segments ? L.curDiag.integratedAcfTime : 1.0;
     sc.deltaBic = L.bicOf(f, t.spec, tauInt) - t.bicBase;
-    sc.neff = std::max(std::min(static_cast<double>(f.count), L.neffCap(f, t.spec, tauInt, &sc.neffLimit)), 2.0);
+    sc.neff = effectiveCount(static_cast<double>(f.count), L.neffCap(f, t.spec, tauInt, &sc.neffLimit));
     sc.fitNrmse = f.nrmse(0.0);
     sc.params = effectParams(f, sc.name);
     sc.sizeCorrelation = sizeCorrelations(f.fit, sc.name);

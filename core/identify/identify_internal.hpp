@@ -201,6 +201,8 @@ void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& op
 // linear between recorded samples, at the ends of the `substeps` law steps of every interval.
 void prepareStepSlip(const IdentifyRun& r, size_t dec, int substeps, Prepared& p);
 
+// n_eff of the criterion below: the n samples, capped by neffCap, at least 2.
+double effectiveCount(double n, double neffCap);
 double bic(double ss, double n, double neffCap, int p);
 // Whether a restart from a held-out refit's point (IdentifyOptions::heldOutRestart; baseline or
 // candidate) is worth taking: that point lowers the BIC by more than the margin an effect must

@@ -73,8 +73,10 @@ std::string baselineTradeOff(const CandidateScore& sc, double maxVif) {
     });
 }
 
+double effectiveCount(double n, double neffCap) { return std::max(std::min(n, neffCap), 2.0); }
+
 double bic(double ss, double n, double neffCap, int p) {
-    const double neff = std::max(std::min(n, neffCap), 2.0);
+    const double neff = effectiveCount(n, neffCap);
     return neff * std::log(std::max(ss, 1e-300) / std::max(n, 1.0)) + p * std::log(neff);
 }
 

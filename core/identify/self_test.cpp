@@ -219,7 +219,7 @@ struct SelfTestRun {
         if (count < 2) return stop("no compared samples");
         out.noiseRms = std::sqrt(ss0 / count);
         out.nullReplicas = opt.nullReplicas;
-        out.neff = std::max(std::min(count, neffCap), 2.0);
+        out.neff = effectiveCount(count, neffCap);
         return true;
     }
 
