@@ -119,11 +119,18 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--candidates", o->req.candidates, "restrict the candidates (catalogue names)")->delimiter(',');
     cmd->add_option("--max-effects", o->req.options.maxEffects, "at most this many effects")->capture_default_str();
     cmd->add_option("--bic-margin", o->req.options.bicMargin, "an effect must lower BIC by more than this")->capture_default_str();
+    cmd->add_option("--restart-margin", o->req.options.restartMargin,
+                    "a model is refitted from another point (--held-out-restart) only when that point lowers its BIC by more "
+                    "than this")->capture_default_str();
     cmd->add_option("--null-alpha", o->req.options.nullAlpha,
                     "an effect's gain must exceed the (1 - this) quantile of what noise replicas of the runs give, in (0, 1)")
         ->capture_default_str();
     cmd->add_option("--null-replicas", o->req.options.nullReplicas, "noise replicas of the null distribution (0: off)")
         ->capture_default_str();
+    cmd->add_flag("--null-numerics,!--no-null-numerics", o->req.options.nullNumerics,
+                  "the noise replicas also carry the residual's numerical part (the residual minus the residual at "
+                  "4x the law steps), so an effect that only absorbs the prediction's discretisation error is not added "
+                  "(default)")->capture_default_str();
     cmd->add_option("--held-out-alpha", o->req.options.heldOutAlpha,
                     "level of the one-sided paired test over held-out runs an effect must pass, in (0, 1)")->capture_default_str();
     cmd->add_option("--identifiability-alpha", o->req.options.identifiabilityAlpha,
@@ -149,7 +156,7 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_flag("--held-out-restart,!--no-held-out-restart", o->req.options.heldOutRestart,
                   "refit the baseline, and a candidate before it is judged, from a leave-one-run-out refit's point, "
                   "and the current model from a round's candidate's point with its effect removed, when that point fits "
-                  "all runs better than the fit by more than --bic-margin in BIC (the fit stopped in a worse minimum); "
+                  "all runs better than the fit by more than --restart-margin in BIC (the fit stopped in a worse minimum); "
                   "on by default")->capture_default_str();
     cmd->add_option("--dynamics-residual", o->req.dynamicsResidual,
                     "dynamics set-up: equation-error (default: the law run along the measured slip, every effect applicable, "

@@ -25,6 +25,8 @@ ParamIssues IdentifyOptions::validate() const {
     range("max_effects", maxEffects, maxEffects >= 0, ">= 0");
     range("multistarts", multistarts, multistarts >= 1, ">= 1");
     range("confounded_vif", confoundedVif, confoundedVif > 1.0, "> 1");
+    range("bic_margin", bicMargin, bicMargin >= 0, ">= 0");
+    range("restart_margin", restartMargin, restartMargin >= 0, ">= 0");
     range("null_alpha", nullAlpha, nullAlpha > 0 && nullAlpha < 1, "in (0, 1)");
     range("null_replicas", nullReplicas, nullReplicas >= 0 && nullReplicas <= 100000, "in [0, 100000]");
     range("held_out_alpha", heldOutAlpha, heldOutAlpha > 0 && heldOutAlpha < 1, "in (0, 1)");
@@ -234,14 +236,21 @@ bool beatsNoiseNull(Loop& L, Round& R, Tried& t) {
     if (!residualVector(L.cx, sw ? R.segSpec : L.spec, base.values, L.fitIdx, r0, &blocks)) return true;
     const Eigen::MatrixXd J0 = residualJacobian(L.cx, t.spec, t.fit.values, L.fitIdx, ps, baseNames, r0.size());
     const Eigen::MatrixXd Jc = residualJacobian(L.cx, t.spec, t.fit.values, L.fitIdx, ps, effNames, r0.size());
-    const NullGains ng = projectionGainNull(J0, Jc, blocks, L.opt.nullReplicas, L.opt.seed + 7919u * R.number);
+    std::vector<double> d;
+    const bool numerics = L.opt.nullNumerics && numericsOffset(L.cx, sw ? R.segSpec : L.spec, base.values, L.fitIdx, r0, d);
+    const NullGains ng = projectionGainNull(projectionBases(J0, Jc), blocks, r0.size(), L.opt.nullReplicas,
+                                            L.opt.seed + 7919u * R.number, numerics ? &d : nullptr);
     sc.gain = base.ss - t.fit.ss;
     sc.nullGain = ng.quantile(1.0 - L.opt.nullAlpha);
     sc.nullReplicas = static_cast<int>(ng.gains.size());
+    if (numerics) sc.numericsGain = ng.offsetGain;
     if (sc.gain > sc.nullGain) return true;
     sc.reason = "gain in the sum of squares " + std::to_string(sc.gain) + " is within the " +
                 std::to_string(100.0 * (1.0 - L.opt.nullAlpha)) + " % quantile of " + std::to_string(sc.nullReplicas) +
-                " noise replicas of these runs (" + std::to_string(sc.nullGain) + "): noise alone gives as much";
+                " noise replicas of these runs (" + std::to_string(sc.nullGain) + ")" +
+                (numerics ? " carrying the prediction's numerical error (alone it gives " + std::to_string(ng.offsetGain) + ")"
+                          : std::string()) +
+                ": noise alone gives as much";
     return false;
 }
 
@@ -458,6 +467,10 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         return res;
     }
     Context cx;
+    // The runs at their recorded rate, for the numerical part of the noise null (numericsOffset).
+    IdentifyOptions fullOpt = opt;
+    fullOpt.decimate = 1;
+    Context full;
     {
         int dec = 0;
         std::string why;
@@ -466,6 +479,9 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
             return res;
         }
         describeSetup(cx, opt, dec, res);
+        int one = 0;
+        if (opt.nullNumerics && opt.nullReplicas > 0 && dec > 1 && prepareContext(runs, fullOpt, full, one, why))
+            cx.fullRate = &full;
     }
     Loop L(cx, opt, res);
     for (size_t i = 0; i < runs.size(); ++i) (runs[i].validation ? L.valIdx : L.fitIdx).push_back(i);
@@ -481,6 +497,8 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
     res.nullAlpha = opt.nullAlpha;
     res.nullReplicas = opt.nullReplicas;
     res.bicMargin = opt.bicMargin;
+    res.restartMargin = opt.restartMargin;
+    res.nullNumerics = opt.nullNumerics && opt.nullReplicas > 0;
     res.identifiabilityAlpha = opt.identifiabilityAlpha;
     if (const ParamIssues bad = opt.validate(); !bad.empty()) {
         res.message = formatIssues(bad);

@@ -115,14 +115,23 @@ struct IdentifyOptions {
     // added to self-generated data without any effect (tst_identify_law::noneAddsNothing; it
     // passes at 0 since the later gates exist). On the 18 synthetic sets it decides no verdict;
     // on six damper runs of one drive frequency it decides all of them (docs/identify-results.md,
-    // session 37). It is also the gain a restart from another point must beat (restartWorthIt).
+    // session 37).
     double bicMargin = 10.0;
+    // The BIC gain (τ_int = 1) a restart from another point must bring before the model is refitted
+    // from it (heldOutRestart, restartWorthIt): a bound on the cost of refits, not a selection
+    // test; a smaller gain could not change a verdict.
+    double restartMargin = 10.0;
     // (1b) noise null (noise_null.hpp): the real gain in the sum of squares must exceed the
     // (1 − nullAlpha) quantile of the gains that `nullReplicas` replicas of the residual's noise
     // (AR(1) per run and channel, level and colour from the current model's residual) give in
     // the linearised candidate model. 0 replicas: off.
     double nullAlpha = 0.05;
     int nullReplicas = 200;
+    // (1b) the replicas also carry the current residual's numerical part (noise_null.hpp): the
+    // residual at the loop's law steps minus the residual at kNumericsRefinement times as many,
+    // so a candidate that absorbs the prediction's own discretisation error is held to what that
+    // error gives, estimated on the data at hand.
+    bool nullNumerics = true;
     // (0) confounding: a candidate whose size parameter trades off with an added effect's in
     // their joint fit — variance inflation 1/(1 − r²) of the two sizes above this, r their
     // correlation at the optimum — is reported "confounded with" that effect and not added:
@@ -155,7 +164,7 @@ struct IdentifyOptions {
     bool curveCoordinates = true;
     // Baseline restart from held-out refits: a leave-one-run-out refit, warm-started from the
     // full fit, that fits ALL the fit runs better than the full fit did shows the full fit
-    // stopped in a worse minimum; if that point lowers the BIC by more than bicMargin, the
+    // stopped in a worse minimum; if that point lowers the BIC by more than restartMargin, the
     // baseline is refitted from it and its errors recomputed. The same guard runs on a candidate
     // at its held-out check, before it is judged (docs/identify-results.md, sessions 13 and 14),
     // and from the other side after every round's candidate fits: a candidate's point with its
@@ -220,6 +229,7 @@ struct CandidateScore {
     // (1b) noise null: the real gain in the sum of squares and the null's (1 − α) quantile.
     double gain = kNoTest, nullGain = kNoTest;
     int nullReplicas = 0;
+    double numericsGain = kNoTest;  // ‖Qcᵀ d‖² of the numerical part d alone (IdentifyOptions::nullNumerics)
     // Correlation of this candidate's size parameter with every other free parameter of its fit
     // (Jacobian at the optimum): with each added effect (keyed by the effect's name: its size
     // parameter) and each baseline parameter. Near ±1 the two trade off.
@@ -302,6 +312,8 @@ struct IdentifyResult {
     double heldOutAlpha = 0.05, identifiabilityAlpha = 0.05;  // the levels used (IdentifyOptions)
     double nullAlpha = 0.05, bicMargin = 0.0;
     int nullReplicas = 0;
+    bool nullNumerics = false;
+    double restartMargin = 0.0;
     double segmentsUsed = 0;  // dynamics: segments in the fit runs (units of the BIC with the segment residual)
     std::string residual;     // residual of "before"/"after": "prescribed", "equation_error" or "segments"
     SelfTestResult selfTest;  // ran only when IdentifyOptions::selfTest.replicas > 0

@@ -34,6 +34,7 @@ struct Prepared {
     // about that size absorbs the cut. Prescribed runs only (identify_prepare.cpp says why); empty
     // when the run is not decimated.
     std::vector<double> stepSlip;
+    size_t dec = 1;  // recorded samples per decimated interval
     double invRmsF = 1.0;
     dsp::Sos predictionFilter;  // the run's cleaning filters at the decimated rate (those below its Nyquist)
     // The prediction y as the cleaned measurement would show it: F + filter(mask·(y − F)), the
@@ -78,6 +79,9 @@ struct Context {
     bool anyDynamics = false;
     double tNref = 1.0;
     double muScale = 1.0;  // the baseline's μ̂, for effect parameters in units of μ (scaledParam)
+    // The same runs prepared at their recorded rate (decimation 1), for numericsOffset; null when
+    // the runs are not decimated or the noise null does not carry the numerical part.
+    const Context* fullRate = nullptr;
 };
 
 struct FitOutcome {
@@ -146,6 +150,16 @@ bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, 
 size_t residualCount(const Context& cx, const std::vector<size_t>& idx);
 bool residualVector(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                     const std::vector<size_t>& idx, std::vector<double>& r, std::vector<NoiseBlock>* blocks = nullptr);
+// The part of the residual r0 (residualVector of the same model) that the prediction's own
+// discretisation makes: r0 minus the residual of the same model predicted at the runs' recorded
+// rate (cx.fullRate: every recorded sample drives the law, the cleaning filters at their own
+// rate) at the samples r0 compares; with the segment residual, or runs not decimated, minus the
+// residual with kNumericsRefinement times the law (Newmark) steps per sample. The measured values
+// cancel: it is the coarse prediction minus the fine one, in the residual's units. False when
+// the refined run fails.
+constexpr int kNumericsRefinement = 4;
+bool numericsOffset(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
+                    const std::vector<size_t>& idx, const std::vector<double>& r0, std::vector<double>& d);
 Eigen::MatrixXd residualJacobian(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                                  const std::vector<size_t>& idx, const std::vector<FitParameter>& params,
                                  const std::vector<std::string>& which, size_t rows);

@@ -220,6 +220,7 @@ bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, 
     for (const IdentifyRun& r : runs) {
         Prepared p;
         p.run = &r;
+        p.dec = dec;
         double ss = 0;
         for (double f : r.force_N) ss += f * f;
         p.invRmsF = ss > 0 ? 1.0 / std::sqrt(ss / r.force_N.size()) : 1.0;

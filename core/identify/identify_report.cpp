@@ -115,6 +115,7 @@ nlohmann::json candidateJson(const CandidateScore& c) {
                           {"noise_null", c.nullReplicas == 0 ? nlohmann::json(nullptr)
                                                              : nlohmann::json{{"gain", num(c.gain)},
                                                                               {"null_quantile", num(c.nullGain)},
+                                                                              {"numerics_gain", c.numericsGain >= 0 ? num(c.numericsGain) : nlohmann::json(nullptr)},
                                                                               {"replicas", c.nullReplicas}}},
                           {"size_test", c.sizeParam.empty() ? nlohmann::json(nullptr)
                                                             : nlohmann::json{{"parameter", c.sizeParam},
@@ -148,7 +149,7 @@ nlohmann::json selectionJson(const IdentifyResult& r) {
                                     "AND its size parameter must differ from its vanishing value by more than t_(K-1,1-alpha/2) "
                                     "standard errors: the jackknife over the leave-one-run-out fits or, where larger, the "
                                     "Jacobian's x sqrt(tau_int)"},
-                      {"null_alpha", num(r.nullAlpha)}, {"null_replicas", r.nullReplicas}, {"bic_margin", num(r.bicMargin)},
+                      {"null_alpha", num(r.nullAlpha)}, {"null_replicas", r.nullReplicas}, {"bic_margin", num(r.bicMargin)}, {"null_numerics", r.nullNumerics}, {"restart_margin", num(r.restartMargin)},
                       {"held_out_alpha", num(r.heldOutAlpha)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
                       {"tau_int_samples", num(r.tauInt)},
                       {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation}, {"jacobian", r.jacobian},

@@ -262,6 +262,49 @@ bool residualVector(const Context& cx, const Spec& spec, const std::map<std::str
     return true;
 }
 
+namespace {
+
+// r0 minus the residual at the recorded rate, sample k of a decimated run being its recorded
+// sample k·dec.
+bool fullRateOffset(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
+                    const std::vector<size_t>& idx, const std::vector<double>& r0, std::vector<double>& d) {
+    const Context& fc = *cx.fullRate;
+    std::vector<double> rf;
+    if (!residualVector(fc, spec, vals, idx, rf)) return false;
+    d.assign(r0.size(), 0.0);
+    size_t offC = 0, offF = 0;
+    for (size_t i : idx) {
+        const size_t nC = cx.runs[i].size(), nF = fc.runs[i].size(), dec = cx.runs[i].dec;
+        const size_t channels = cx.runs[i].run->setup == SetupKind::Dynamics ? 2 : 1;
+        if (nC == 0 || nF < (nC - 1) * dec + 1) return false;
+        for (size_t ch = 0; ch < channels; ++ch)
+            for (size_t k = 0; k < nC; ++k) d[offC + ch * nC + k] = r0[offC + ch * nC + k] - rf[offF + ch * nF + k * dec];
+        offC += channels * nC;
+        offF += channels * nF;
+    }
+    return offC == r0.size() && offF == rf.size();
+}
+
+}  // namespace
+
+bool numericsOffset(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
+                    const std::vector<size_t>& idx, const std::vector<double>& r0, std::vector<double>& d) {
+    if (cx.fullRate && !spec.segments) return fullRateOffset(cx, spec, vals, idx, r0, d);
+    IdentifyOptions fine = *cx.opt;
+    fine.substeps = std::max(1, fine.substeps) * kNumericsRefinement;
+    fine.segmentSubsteps = std::max(1, fine.segmentSubsteps) * kNumericsRefinement;
+    Context fc = cx;
+    fc.opt = &fine;
+    fc.fullRate = nullptr;
+    for (size_t i : idx)
+        if (!fc.runs[i].stepSlip.empty()) prepareStepSlip(*fc.runs[i].run, fc.runs[i].dec, fine.substeps, fc.runs[i]);
+    std::vector<double> rf;
+    if (!residualVector(fc, spec, vals, idx, rf) || rf.size() != r0.size()) return false;
+    d.resize(r0.size());
+    for (size_t k = 0; k < r0.size(); ++k) d[k] = r0[k] - rf[k];
+    return true;
+}
+
 // Central-difference Jacobian of the residual vector in the solver's coordinates (log for
 // log-scaled parameters, the range for linear ones) at `vals`, for the free parameters whose
 // names are in `which`; a column whose step would leave the bounds uses a one-sided step.

@@ -16,7 +16,7 @@ namespace {
 
 // The core both restart guards share: the best of `points` (the model `spec` evaluated at each)
 // below `fit`'s sum of squares, the BIC it gains, and, when that gain is evidence on the scale the
-// loop asks of an effect (restartWorthIt: lower BIC by more than bicMargin, τ_int = 1, the larger
+// loop asks of an effect (restartWorthIt: lower BIC by more than restartMargin, τ_int = 1, the larger
 // n_eff, so in doubt it restarts), `spec` refitted from it. A smaller gain could not change a
 // verdict and would cost a fit and the held-out refits again.
 struct RestartTry {
@@ -37,7 +37,7 @@ RestartTry tryRestart(Loop& L, const Spec& spec, const FitOutcome& fit, const st
     }
     if (r.best < 0) return r;
     r.gain = L.bicOf(fit, spec, 1.0) - L.bicAt(r.bestSS, fit, spec, 1.0);
-    r.worthIt = restartWorthIt(r.gain, L.opt.bicMargin);
+    r.worthIt = restartWorthIt(r.gain, L.opt.restartMargin);
     if (r.worthIt) {
         L.progress(what(r.best), 0.0);
         r.refit = fitSpec(L.cx, spec, points[r.best], L.fitIdx, 1, L.res.fits);
@@ -72,7 +72,7 @@ bool restartFromHeldOut(Loop& L, const Spec& spec, FitOutcome& fit, const std::v
     const std::string found = "a leave-one-run-out refit's point fitted all runs at sum of squares " + std::to_string(r.bestSS) +
                               " against the full fit's " + std::to_string(fit.ss) + " (BIC lower by " + std::to_string(r.gain);
     if (!r.worthIt) {
-        note = found + ", not more than the margin " + std::to_string(L.opt.bicMargin) + "): the full fit kept";
+        note = found + ", not more than the margin " + std::to_string(L.opt.restartMargin) + "): the full fit kept";
         return false;
     }
     if (!r.lowers(fit)) return false;
@@ -112,7 +112,7 @@ std::string checkBaselineBounds(Loop& L) {
         FitOutcome g = fitSpec(L.cx, L.spec, start, L.fitIdx, 1, L.res.fits);
         b.retryValue = g.ok && g.values.count(hit->name) ? g.values.at(hit->name) : kNaN;
         b.bicGain = g.ok ? L.bicOf(L.cur, L.spec, 1.0) - L.bicOf(g, L.spec, 1.0) : kNaN;
-        b.refitted = g.ok && restartWorthIt(b.bicGain, L.opt.bicMargin);
+        b.refitted = g.ok && restartWorthIt(b.bicGain, L.opt.restartMargin);
         const bool leftBound = std::isfinite(b.retryValue) && boundSide(*hit, b.retryValue) != side;
         b.solverFailure = b.refitted && leftBound;
         note += std::string(note.empty() ? "" : "; ") + hit->name + " ended on its " + b.side + " bound " +

@@ -77,19 +77,24 @@ NullGains projectionGainNull(const Eigen::MatrixXd& J0, const Eigen::MatrixXd& J
 }
 
 NullGains projectionGainNull(const ProjectionBases& pb, const std::vector<NoiseBlock>& blocks, size_t rows, int replicas,
-                             uint64_t seed) {
+                             uint64_t seed, const std::vector<double>* offset) {
     NullGains out;
-    if (!pb.valid) return out;
+    if (!pb.valid || (offset && offset->size() != rows)) return out;
     const Eigen::Index n = static_cast<Eigen::Index>(rows), rc = pb.Qc.cols();
     out.rankExtra = static_cast<int>(rc);
     if (rc == 0) {
         out.gains.assign(static_cast<size_t>(std::max(replicas, 0)), 0.0);
         return out;
     }
+    Eigen::VectorXd qd = Eigen::VectorXd::Zero(rc);
+    if (offset) {
+        qd = pb.Qc.transpose() * Eigen::Map<const Eigen::VectorXd>(offset->data(), n);
+        out.offsetGain = qd.squaredNorm();
+    }
     for (int b = 0; b < replicas; ++b) {
         const std::vector<double> e = noiseReplica(blocks, static_cast<size_t>(n), seed + static_cast<uint64_t>(b));
         const Eigen::Map<const Eigen::VectorXd> ev(e.data(), n);
-        out.gains.push_back((pb.Qc.transpose() * ev).squaredNorm());
+        out.gains.push_back((pb.Qc.transpose() * ev + qd).squaredNorm());
     }
     std::sort(out.gains.begin(), out.gains.end());
     return out;

@@ -39,6 +39,7 @@ std::vector<double> noiseReplica(const std::vector<NoiseBlock>& blocks, size_t t
 struct NullGains {
     std::vector<double> gains;  // one per replica, sorted ascending
     int rankExtra = 0;          // columns of J_c independent of J_0 (0: the candidate adds nothing)
+    double offsetGain = 0.0;    // ‖Qcᵀ d‖² of the fixed offset alone (0 without one)
     double quantile(double p) const;  // empirical p-quantile (the ceil(p·B)-th smallest)
 };
 
@@ -58,8 +59,9 @@ ProjectionBases projectionBases(const Eigen::MatrixXd& J0, const Eigen::MatrixXd
 // nothing.
 NullGains projectionGainNull(const Eigen::MatrixXd& J0, const Eigen::MatrixXd& Jc, const std::vector<NoiseBlock>& blocks,
                              int replicas, uint64_t seed);
-// The same with the bases already made (rows: the length of the residual vector).
+// The same with the bases already made (rows: the length of the residual vector). `offset`
+// (size rows, optional) is added to every replica: e_b + d.
 NullGains projectionGainNull(const ProjectionBases& pb, const std::vector<NoiseBlock>& blocks, size_t rows, int replicas,
-                             uint64_t seed);
+                             uint64_t seed, const std::vector<double>* offset = nullptr);
 
 }  // namespace stickslip::identify

@@ -164,6 +164,7 @@ struct SelfTestRun {
     const uint64_t nullSeed, replicaSeed;
     SelfTestResult out;
     std::vector<double> r0;                     // the baseline's residual
+    std::vector<double> numerics;               // its numerical part (IdentifyOptions::nullNumerics; empty: off)
     std::vector<NoiseBlock> blocks;             // its runs and channels, for the noise replicas
     size_t n = 0;                               // residual length
     std::vector<char> used;                     // compared samples
@@ -220,6 +221,13 @@ struct SelfTestRun {
         out.noiseRms = std::sqrt(ss0 / count);
         out.nullReplicas = opt.nullReplicas;
         out.neff = effectiveCount(count, neffCap);
+        // The replicas carry the numerical part as the user's runs do (the loop's null holds it too).
+        if (opt.nullNumerics && opt.nullReplicas > 0 && !numericsOffset(cx, spec, base.values, fitIdx, r0, numerics))
+            numerics.clear();
+        double ssd = 0;
+        for (size_t k = 0; k < numerics.size(); ++k)
+            if (used[k]) ssd += numerics[k] * numerics[k];
+        out.numericsRms = numerics.empty() ? -1.0 : std::sqrt(ssd / count);
         return true;
     }
 
@@ -264,7 +272,7 @@ struct SelfTestRun {
         const Eigen::MatrixXd J0c = baseColumns(lc.baseCols, held);
         lc.bases = projectionBases(J0c, lc.Jc);
         lc.params = static_cast<int>(J0c.cols() + lc.Jc.cols());
-        lc.nullQuantile = opt.nullReplicas > 0 ? projectionGainNull(lc.bases, blocks, n, opt.nullReplicas, nullSeed).quantile(1.0 - opt.nullAlpha) : 0.0;
+        lc.nullQuantile = opt.nullReplicas > 0 ? projectionGainNull(lc.bases, blocks, n, opt.nullReplicas, nullSeed, numerics.empty() ? nullptr : &numerics).quantile(1.0 - opt.nullAlpha) : 0.0;
     }
 
     // The candidate `c` linearised at `vals` (its effect parameters included).
@@ -456,7 +464,8 @@ struct SelfTestRun {
     void makeNoises() {
         for (const LinearCandidate& lc : lin) all.push_back(&lc);
         for (int b = 0; b < so.replicas; ++b) {
-            const std::vector<double> e = noiseReplica(blocks, n, replicaSeed + static_cast<uint64_t>(b));
+            std::vector<double> e = noiseReplica(blocks, n, replicaSeed + static_cast<uint64_t>(b));
+            for (size_t k = 0; k < numerics.size(); ++k) e[k] += numerics[k];
             noises.push_back(Eigen::Map<const Vec>(e.data(), static_cast<Eigen::Index>(n)));
         }
     }
@@ -545,7 +554,8 @@ struct SelfTestRun {
         progress("replicas without an effect", 1.0);
         const int nNull = so.replicas * static_cast<int>(std::max<size_t>(cands.size(), 1));
         for (int b = 0; b < nNull && !cancelled(); ++b) {
-            const std::vector<double> noise = noiseReplica(blocks, n, replicaSeed + 500009u + static_cast<uint64_t>(b));
+            std::vector<double> noise = noiseReplica(blocks, n, replicaSeed + 500009u + static_cast<uint64_t>(b));
+            for (size_t k = 0; k < numerics.size(); ++k) noise[k] += numerics[k];
             const int p = sel.pick(Eigen::Map<const Vec>(noise.data(), static_cast<Eigen::Index>(n)), all);
             ++out.falseAlarmReplicas;
             if (p >= 0) { ++out.falseAlarms; ++out.falseAlarmsBy[cands[static_cast<size_t>(p)]]; }
@@ -574,6 +584,7 @@ nlohmann::json toJson(const SelfTestResult& r) {
                   "tests (1a) dBIC and (1b) noise null of the selection in the linearised refit; the held-out and "
                   "size tests are not applied (detection rates are upper bounds for the full loop)";
     j["noise_rms"] = r.noiseRms;
+    j["numerics_rms"] = r.numericsRms >= 0 ? nlohmann::json(r.numericsRms) : nlohmann::json(nullptr);
     j["n_eff"] = r.neff;
     j["null_replicas"] = r.nullReplicas;
     j["false_alarm_replicas"] = r.falseAlarmReplicas;

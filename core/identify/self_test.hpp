@@ -65,6 +65,7 @@ struct SelfTestResult {
     bool ok = false;
     std::string message;       // why it did not run to the end
     double noiseRms = 0;       // RMS of the baseline residual over the compared samples
+    double numericsRms = -1;   // RMS of its numerical part, which every replica carries (−1: not used)
     double neff = 0;           // n_eff of the BIC
     int nullReplicas = 0;
     int falseAlarmReplicas = 0, falseAlarms = 0;     // replicas without an effect, and how many picked one

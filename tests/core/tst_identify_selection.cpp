@@ -360,6 +360,66 @@ private slots:
         QVERIFY(lin.runs[0].stepSlip.empty());
     }
 
+    // The numerical part of the noise null (numericsOffset): with decimated runs it is the
+    // residual at the used samples minus the residual of the same model predicted from every
+    // recorded sample, read at the same samples; the measured force cancels (changing it changes
+    // nothing), and it is not zero (the dwells' corners and the law's steps differ). Without a
+    // recorded-rate context it is the residual minus the one at 4x the law steps along the
+    // recorded slip: here 8 steps per used interval, 2 per recorded one, as the recorded-rate run.
+    void numericsOffsetIsCoarseMinusRecordedRatePrediction() {
+        IdentifyRun r = syntheticRun(SetupKind::Prescribed);
+        for (size_t i = 0; i < r.t_s.size(); ++i) {
+            const double s = 1.4 * std::sin(2 * M_PI * 3 * r.t_s[i]);
+            r.slip_m[i] = 1e-3 * std::clamp(s, -1.0, 1.0);
+        }
+        IdentifyOptions opt, fullOpt;
+        opt.start.mu = 0.25; opt.start.C1 = 0.2; opt.start.eta_s_per_m = 0.6; opt.start.Dc_m = 2e-5;
+        opt.start.vc_mps = 0.1; opt.start.epsT_N_per_m = 5e4;
+        opt.decimate = 4;
+        fullOpt = opt;
+        fullOpt.decimate = 1;
+        std::vector<IdentifyRun> runs = {r, r};
+        runs[1].file = "second";
+        for (size_t i = 0; i < runs[1].force_N.size(); ++i) runs[1].force_N[i] += 0.3 * std::cos(91.0 * runs[1].t_s[i]);
+        Context cx, full;
+        int dec = 0;
+        std::string why;
+        QVERIFY2(prepareContext(runs, opt, cx, dec, why), why.c_str());
+        QVERIFY2(prepareContext(runs, fullOpt, full, dec, why), why.c_str());
+        QCOMPARE(dec, 1);
+        cx.fullRate = &full;
+        const Spec spec;
+        const std::vector<size_t> idx = {0, 1};
+        std::vector<double> r0, rf, d;
+        QVERIFY(residualVector(cx, spec, {}, idx, r0));
+        QVERIFY(residualVector(full, spec, {}, idx, rf));
+        QVERIFY(numericsOffset(cx, spec, {}, idx, r0, d));
+        const size_t nC = cx.runs[0].size(), nF = full.runs[0].size();
+        QCOMPARE(r0.size(), 2 * nC);
+        QCOMPARE(d.size(), r0.size());
+        double dss = 0, rss = 0;
+        for (size_t k = 0; k < nC; ++k) {
+            QCOMPARE(d[k], r0[k] - rf[4 * k]);
+            QCOMPARE(d[nC + k], r0[nC + k] - rf[nF + 4 * k]);
+            // The two runs differ only in their measured force, scaled by its RMS in each.
+            QVERIFY(std::abs(d[nC + k] / cx.runs[1].invRmsF - d[k] / cx.runs[0].invRmsF) < 1e-9);
+            dss += d[k] * d[k];
+            rss += r0[k] * r0[k];
+        }
+        qInfo("numerical part: RMS %.3g of a residual RMS %.3g", std::sqrt(dss / nC), std::sqrt(rss / nC));
+        QVERIFY(dss > 0);
+        QVERIFY(dss < rss);
+        // Without the recorded-rate context: the law's steps refined 4x along the same input.
+        cx.fullRate = nullptr;
+        std::vector<double> dSub;
+        QVERIFY(numericsOffset(cx, spec, {}, idx, r0, dSub));
+        QCOMPARE(dSub.size(), r0.size());
+        double sub = 0;
+        for (size_t k = 0; k < nC; ++k) sub += dSub[k] * dSub[k];
+        qInfo("4x the law steps: RMS %.3g", std::sqrt(sub / nC));
+        QVERIFY(sub > 0);
+    }
+
     // A model that differs only in m, ζ, a viscous damping or a sensor mass may reuse another's law
     // run: the residuals are bit for bit those of its own simulation, in both set-ups; a model
     // with another law parameter is not (the test would see it).

@@ -93,6 +93,42 @@ private slots:
         QVERIFY2(redQ > 5.0 * whiteQ, qPrintable(QString("%1 vs %2").arg(redQ).arg(whiteQ)));
     }
 
+    // A fixed offset d in every replica (the residual's numerical part): its own gain is
+    // ‖Qcᵀ d‖², the replicas' gains are those of e + d; a d that J_c cannot absorb (in span(J_0)
+    // or orthogonal to both) changes nothing, a d along J_c's new direction moves the quantile
+    // to about (‖Qcᵀd‖ + 1.645 σ)² for one column.
+    void offsetIsCarriedByEveryReplica() {
+        const Eigen::Index n = 1000;
+        Eigen::MatrixXd J0(n, 1), Jc(n, 1);
+        std::vector<double> inJ0(static_cast<size_t>(n)), along(static_cast<size_t>(n));
+        for (Eigen::Index i = 0; i < n; ++i) {
+            J0(i, 0) = 1.0;
+            Jc(i, 0) = std::sin(0.05 * static_cast<double>(i));
+            inJ0[static_cast<size_t>(i)] = 3.0;
+            along[static_cast<size_t>(i)] = 0.2 * Jc(i, 0);
+        }
+        NoiseBlock b;
+        b.length = static_cast<size_t>(n);
+        b.used.assign(b.length, 1);
+        b.sigma = 0.1;
+        const ProjectionBases pb = projectionBases(J0, Jc);
+        const NullGains plain = projectionGainNull(pb, {b}, static_cast<size_t>(n), 2000, 3);
+        const NullGains flat = projectionGainNull(pb, {b}, static_cast<size_t>(n), 2000, 3, &inJ0);
+        QCOMPARE(plain.offsetGain, 0.0);
+        QVERIFY(flat.offsetGain < 1e-18);
+        QVERIFY(std::abs(flat.quantile(0.95) - plain.quantile(0.95)) < 1e-12);
+        const NullGains shifted = projectionGainNull(pb, {b}, static_cast<size_t>(n), 2000, 3, &along);
+        const double dNorm2 = 0.04 * Jc.squaredNorm();  // d lies along J_c (orthogonal to J_0 up to the mean)
+        QVERIFY2(std::abs(shifted.offsetGain / dNorm2 - 1.0) < 0.01, qPrintable(QString::number(shifted.offsetGain)));
+        const double expect = std::pow(std::sqrt(shifted.offsetGain) + 1.645 * b.sigma, 2.0);
+        QVERIFY2(std::abs(shifted.quantile(0.95) / expect - 1.0) < 0.05,
+                 qPrintable(QString("%1 vs %2").arg(shifted.quantile(0.95)).arg(expect)));
+        QVERIFY(shifted.quantile(0.95) > 10.0 * plain.quantile(0.95));
+        // An offset of the wrong length is refused (no gains), not read past its end.
+        const std::vector<double> shortOffset(10, 1.0);
+        QVERIFY(projectionGainNull(pb, {b}, static_cast<size_t>(n), 20, 3, &shortOffset).gains.empty());
+    }
+
     // The bases of the linearised refit: Q0 orthonormal over span(J0), Qc orthonormal and
     // orthogonal to it, spanning what J_c adds; a column that J0 already has adds nothing.
     void projectionBasesSplitTheSpans() {
