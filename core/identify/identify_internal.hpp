@@ -153,10 +153,11 @@ bool residualVector(const Context& cx, const Spec& spec, const std::map<std::str
 // The part of the residual r0 (residualVector of the same model) that the prediction's own
 // discretisation makes: r0 minus the residual of the same model predicted at the runs' recorded
 // rate (cx.fullRate: every recorded sample drives the law, the cleaning filters at their own
-// rate) at the samples r0 compares; with the segment residual, or runs not decimated, minus the
-// residual with kNumericsRefinement times the law (Newmark) steps per sample. The measured values
-// cancel: it is the coarse prediction minus the fine one, in the residual's units. False when
-// the refined run fails.
+// rate) at the samples r0 compares; with the segment residual, or runs not decimated, with
+// kNumericsRefinement times the law (Newmark) steps per sample. The fine residual is refitted to
+// those samples (linearised at vals: its free parameters' Jacobian projected out), because the
+// coarse fit's parameters already took up what they can of the coarse model's error. At the
+// coarse optimum r0 − d is then the fine model's best-fit residual. False when a run fails.
 constexpr int kNumericsRefinement = 4;
 bool numericsOffset(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                     const std::vector<size_t>& idx, const std::vector<double>& r0, std::vector<double>& d);

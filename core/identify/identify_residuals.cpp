@@ -264,44 +264,74 @@ bool residualVector(const Context& cx, const Spec& spec, const std::map<std::str
 
 namespace {
 
-// r0 minus the residual at the recorded rate, sample k of a decimated run being its recorded
-// sample k·dec.
-bool fullRateOffset(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
-                    const std::vector<size_t>& idx, const std::vector<double>& r0, std::vector<double>& d) {
-    const Context& fc = *cx.fullRate;
-    std::vector<double> rf;
-    if (!residualVector(fc, spec, vals, idx, rf)) return false;
-    d.assign(r0.size(), 0.0);
-    size_t offC = 0, offF = 0;
-    for (size_t i : idx) {
-        const size_t nC = cx.runs[i].size(), nF = fc.runs[i].size(), dec = cx.runs[i].dec;
-        const size_t channels = cx.runs[i].run->setup == SetupKind::Dynamics ? 2 : 1;
-        if (nC == 0 || nF < (nC - 1) * dec + 1) return false;
-        for (size_t ch = 0; ch < channels; ++ch)
-            for (size_t k = 0; k < nC; ++k) d[offC + ch * nC + k] = r0[offC + ch * nC + k] - rf[offF + ch * nF + k * dec];
-        offC += channels * nC;
-        offF += channels * nF;
-    }
-    return offC == r0.size() && offF == rf.size();
+// Within 1e-6 of its range (in the solver's coordinates: log for log-scaled parameters) of a bound.
+bool onBound(const FitParameter& p, const std::map<std::string, double>& vals) {
+    const auto it = vals.find(p.name);
+    const double v = it != vals.end() ? it->second : p.value;
+    const bool lg = p.scale == ParamScale::Log && p.lower > 0 && v > 0;
+    auto c = [&](double x) { return lg ? std::log(x) : x; };
+    const double tol = 1e-6 * (c(p.upper) - c(p.lower));
+    return c(v) - c(p.lower) <= tol || c(p.upper) - c(v) <= tol;
 }
 
 }  // namespace
 
 bool numericsOffset(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                     const std::vector<size_t>& idx, const std::vector<double>& r0, std::vector<double>& d) {
-    if (cx.fullRate && !spec.segments) return fullRateOffset(cx, spec, vals, idx, r0, d);
-    IdentifyOptions fine = *cx.opt;
-    fine.substeps = std::max(1, fine.substeps) * kNumericsRefinement;
-    fine.segmentSubsteps = std::max(1, fine.segmentSubsteps) * kNumericsRefinement;
-    Context fc = cx;
-    fc.opt = &fine;
-    fc.fullRate = nullptr;
-    for (size_t i : idx)
-        if (!fc.runs[i].stepSlip.empty()) prepareStepSlip(*fc.runs[i].run, fc.runs[i].dec, fine.substeps, fc.runs[i]);
+    // The finer prediction: at the recorded rate, else with more law (Newmark) steps per sample.
+    const bool fullRate = cx.fullRate && !spec.segments;
+    IdentifyOptions fineOpt = *cx.opt;
+    fineOpt.substeps = std::max(1, fineOpt.substeps) * kNumericsRefinement;
+    fineOpt.segmentSubsteps = std::max(1, fineOpt.segmentSubsteps) * kNumericsRefinement;
+    Context sub;
+    if (!fullRate) {
+        sub = cx;
+        sub.opt = &fineOpt;
+        sub.fullRate = nullptr;
+        for (size_t i : idx)
+            if (!sub.runs[i].stepSlip.empty()) prepareStepSlip(*sub.runs[i].run, sub.runs[i].dec, fineOpt.substeps, sub.runs[i]);
+    }
+    const Context& fc = fullRate ? *cx.fullRate : sub;
     std::vector<double> rf;
-    if (!residualVector(fc, spec, vals, idx, rf) || rf.size() != r0.size()) return false;
+    if (!residualVector(fc, spec, vals, idx, rf)) return false;
+    // Row of the fine residual that each of r0's entries compares with (sample k of a decimated
+    // run is its recorded sample k·dec).
+    std::vector<size_t> row;
+    row.reserve(r0.size());
+    size_t offF = 0;
+    for (size_t i : idx) {
+        const size_t nC = cx.runs[i].size(), nF = fc.runs[i].size(), dec = fullRate ? cx.runs[i].dec : 1;
+        const size_t channels = cx.runs[i].run->setup == SetupKind::Dynamics ? 2 : 1;
+        if (nC == 0 || nF < (nC - 1) * dec + 1) return false;
+        for (size_t ch = 0; ch < channels; ++ch)
+            for (size_t k = 0; k < nC; ++k) row.push_back(offF + ch * nF + k * dec);
+        offF += channels * nF;
+    }
+    if (row.size() != r0.size() || offF != rf.size()) return false;
+    // The fine model refitted to the same samples (linearised at vals): the coarse fit's parameters
+    // have taken up the part of its numerical error they can, so the comparison is between the
+    // two models' best fits, not at one point. Without it the fine model's misfit at the coarse
+    // optimum leaks into the candidate's direction through the difference of the two Jacobians.
+    // Parameters on a bound of their range stay there: the coarse fit could not move them either
+    // (an active constraint), and a refit through one would take up structure the bound keeps
+    // out, e.g. the rig's ζ at its baseline maximum would absorb a viscous damping beyond it.
+    const std::vector<FitParameter> ps = parameters(cx, spec, vals);
+    std::vector<std::string> names;
+    for (const FitParameter& p : ps)
+        if (p.free && !onBound(p, vals)) names.push_back(p.name);
+    const Eigen::Index n = static_cast<Eigen::Index>(r0.size());
+    Eigen::VectorXd rs(n);
+    for (Eigen::Index k = 0; k < n; ++k) rs[k] = rf[row[static_cast<size_t>(k)]];
+    if (!names.empty()) {
+        const Eigen::MatrixXd Jf = residualJacobian(fc, spec, vals, idx, ps, names, rf.size());
+        Eigen::MatrixXd Js(n, Jf.cols());
+        for (Eigen::Index k = 0; k < n; ++k) Js.row(k) = Jf.row(static_cast<Eigen::Index>(row[static_cast<size_t>(k)]));
+        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Js);
+        qr.setThreshold(1e-9);
+        rs -= Js * qr.solve(rs);
+    }
     d.resize(r0.size());
-    for (size_t k = 0; k < r0.size(); ++k) d[k] = r0[k] - rf[k];
+    for (Eigen::Index k = 0; k < n; ++k) d[static_cast<size_t>(k)] = r0[static_cast<size_t>(k)] - rs[k];
     return true;
 }
 

@@ -10,6 +10,11 @@
 // Gain: in the linearised model around the current fit, the gain of a candidate with extra
 // Jacobian columns J_c on a replica e is ‖P⊥ e‖², P⊥ the projection onto the part of span(J_c)
 // orthogonal to the current model's columns J_0 (the current parameters refitted too).
+// Numerics: the replicas may carry a fixed offset d besides the noise, the part of the current
+// residual that the prediction's own discretisation makes (the residual at the loop's samples and
+// law steps minus the best-fit residual of the same model predicted at the recorded rate,
+// identify_internal.hpp's numericsOffset): a candidate that absorbs the model's numerical error
+// gains ‖Qcᵀ(e + d)‖² from data the current model explains exactly.
 #pragma once
 
 #include <cstdint>
