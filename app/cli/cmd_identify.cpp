@@ -128,9 +128,9 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--null-replicas", o->req.options.nullReplicas, "noise replicas of the null distribution (0: off)")
         ->capture_default_str();
     cmd->add_flag("--null-numerics,!--no-null-numerics", o->req.options.nullNumerics,
-                  "the noise replicas also carry the residual's numerical part (the residual minus the residual at "
-                  "4x the law steps), so an effect that only absorbs the prediction's discretisation error is not added "
-                  "(default)")->capture_default_str();
+                  "the noise replicas also carry the residual's numerical part (the residual minus that of the same model "
+                  "predicted from every recorded sample, or with 4x the law steps, refitted to the same samples), so an "
+                  "effect that only absorbs the prediction's discretisation error is not added (default)")->capture_default_str();
     cmd->add_option("--held-out-alpha", o->req.options.heldOutAlpha,
                     "level of the one-sided paired test over held-out runs an effect must pass, in (0, 1)")->capture_default_str();
     cmd->add_option("--identifiability-alpha", o->req.options.identifiabilityAlpha,

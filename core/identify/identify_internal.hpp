@@ -158,6 +158,9 @@ bool residualVector(const Context& cx, const Spec& spec, const std::map<std::str
 // those samples (linearised at vals: its free parameters' Jacobian projected out), because the
 // coarse fit's parameters already took up what they can of the coarse model's error. At the
 // coarse optimum r0 − d is then the fine model's best-fit residual. False when a run fails.
+// Which bound of its range `v` is on: −1 lower, +1 upper, 0 neither (or not finite); within 1e-6
+// of the range in the parameter's own scale (identify_restart.cpp).
+int boundSide(const FitParameter& p, double v);
 constexpr int kNumericsRefinement = 4;
 bool numericsOffset(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                     const std::vector<size_t>& idx, const std::vector<double>& r0, std::vector<double>& d);

@@ -262,20 +262,6 @@ bool residualVector(const Context& cx, const Spec& spec, const std::map<std::str
     return true;
 }
 
-namespace {
-
-// Within 1e-6 of its range (in the solver's coordinates: log for log-scaled parameters) of a bound.
-bool onBound(const FitParameter& p, const std::map<std::string, double>& vals) {
-    const auto it = vals.find(p.name);
-    const double v = it != vals.end() ? it->second : p.value;
-    const bool lg = p.scale == ParamScale::Log && p.lower > 0 && v > 0;
-    auto c = [&](double x) { return lg ? std::log(x) : x; };
-    const double tol = 1e-6 * (c(p.upper) - c(p.lower));
-    return c(v) - c(p.lower) <= tol || c(p.upper) - c(v) <= tol;
-}
-
-}  // namespace
-
 bool numericsOffset(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                     const std::vector<size_t>& idx, const std::vector<double>& r0, std::vector<double>& d) {
     // The finer prediction: at the recorded rate, else with more law (Newmark) steps per sample.
@@ -318,7 +304,7 @@ bool numericsOffset(const Context& cx, const Spec& spec, const std::map<std::str
     const std::vector<FitParameter> ps = parameters(cx, spec, vals);
     std::vector<std::string> names;
     for (const FitParameter& p : ps)
-        if (p.free && !onBound(p, vals)) names.push_back(p.name);
+        if (p.free && boundSide(p, vals.count(p.name) ? vals.at(p.name) : p.value) == 0) names.push_back(p.name);
     const Eigen::Index n = static_cast<Eigen::Index>(r0.size());
     Eigen::VectorXd rs(n);
     for (Eigen::Index k = 0; k < n; ++k) rs[k] = rf[row[static_cast<size_t>(k)]];

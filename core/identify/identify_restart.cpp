@@ -45,6 +45,8 @@ RestartTry tryRestart(Loop& L, const Spec& spec, const FitOutcome& fit, const st
     return r;
 }
 
+}  // namespace
+
 // Which bound of its range `v` is on: −1 lower, +1 upper, 0 neither (or not finite). On a bound
 // means within 1e-6 of the range in the parameter's own scale, as the engine flags "at a bound"
 // (fit.cpp).
@@ -57,8 +59,6 @@ int boundSide(const FitParameter& p, double v) {
     if (zv - z(p.lower) < 1e-6 * span) return -1;
     return 0;
 }
-
-}  // namespace
 
 // IdentifyOptions::heldOutRestart: the leave-one-run-out refits (`loo`) are warm-started from
 // the fit they check; one whose point fits all the fit runs better than that fit shows it stopped
