@@ -78,6 +78,10 @@ struct Round {
     bool segBaseTried = false;
     ModelErrors segBaseErrors;
     bool segBaseErrorsDone = false;
+    // The current model's numerical part (numericsOffset), per residual ([1]: the segment
+    // residual), made once: every candidate's noise null in the round is around the same point.
+    std::vector<double> numerics[2];
+    int numericsMade[2] = {0, 0};  // 0 not yet, 1 made, −1 failed
 
     std::string label() const { return "round " + std::to_string(number); }
     const FitOutcome& segBaseline(Loop& L) {
@@ -236,8 +240,11 @@ bool beatsNoiseNull(Loop& L, Round& R, Tried& t) {
     if (!residualVector(L.cx, sw ? R.segSpec : L.spec, base.values, L.fitIdx, r0, &blocks)) return true;
     const Eigen::MatrixXd J0 = residualJacobian(L.cx, t.spec, t.fit.values, L.fitIdx, ps, baseNames, r0.size());
     const Eigen::MatrixXd Jc = residualJacobian(L.cx, t.spec, t.fit.values, L.fitIdx, ps, effNames, r0.size());
-    std::vector<double> d;
-    const bool numerics = L.opt.nullNumerics && numericsOffset(L.cx, sw ? R.segSpec : L.spec, base.values, L.fitIdx, r0, d);
+    const std::vector<double>& d = R.numerics[sw];
+    int& made = R.numericsMade[sw];
+    if (L.opt.nullNumerics && made == 0)
+        made = numericsOffset(L.cx, sw ? R.segSpec : L.spec, base.values, L.fitIdx, r0, R.numerics[sw]) ? 1 : -1;
+    const bool numerics = L.opt.nullNumerics && made == 1;
     const NullGains ng = projectionGainNull(projectionBases(J0, Jc), blocks, r0.size(), L.opt.nullReplicas,
                                             L.opt.seed + 7919u * R.number, numerics ? &d : nullptr);
     sc.gain = base.ss - t.fit.ss;
