@@ -20,6 +20,7 @@ void buildCliApp(CLI::App& app, int& exitCode) {
     addReproduceCommand(app, exitCode);
     addFitCommand(app, exitCode);
     addIdentifyCommand(app, exitCode);
+    addSynthesizeCommand(app, exitCode);
     addManPageCommand(app, exitCode);
 }
 

@@ -24,5 +24,6 @@ void addAnalyzeCommand(CLI::App& root, int& exitCode);
 void addReproduceCommand(CLI::App& root, int& exitCode);
 void addFitCommand(CLI::App& root, int& exitCode);
 void addIdentifyCommand(CLI::App& root, int& exitCode);
+void addSynthesizeCommand(CLI::App& root, int& exitCode);
 
 }  // namespace stickslip::cli
