@@ -36,7 +36,8 @@ export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export QT_QPA_PLATFORM=offscreen
 cd "$asan"
-# Left to the Release pass: the full heaviest fits (their small cases run here), and the install
+# Left to the Release pass: the full heaviest fits (their small cases run here; the loop on a
+# synthesized set has the same stages as the small synthetic case), and the install
 # test (it installs and runs the Release layout, Python module included).
 ctest --output-on-failure -j"$(nproc)" \
-      -E '^(core_tst_fit_dynamics|core_tst_identify_synthetic_D[0-9]+|install_tree)$'
+      -E '^(core_tst_fit_dynamics|core_tst_identify_synthetic_D[0-9]+|core_tst_identify_synthesized|install_tree)$'

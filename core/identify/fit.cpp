@@ -437,6 +437,7 @@ FitResult fitLeastSquares(const FitProblem& prob) {
         return res;
     }
     res.converged = best.summary.termination_type == ceres::CONVERGENCE;
+    res.initialCost = best.summary.initial_cost;
     res.solverSummary = best.summary.BriefReport() + "\n" + perStart.str();
     if (!finishAtOptimum(prob, map, evaluator, best.z, best.cost, res)) return res;
     res.status = best.cancelled ? FitStatus::Cancelled : FitStatus::Ok;

@@ -135,6 +135,7 @@ struct FitResult {
     double conditionLimit = 0.0;
 
     double cost = 0.0;                      // ½ Σ ρ(r²) at the optimum (Ceres convention)
+    double initialCost = 0.0;               // the same at the best start's first point (after the scans)
     double rms = 0.0;                       // sqrt(Σ r² / m), plain residuals
     size_t residualCount = 0;
     bool converged = false;                 // best start ended with Ceres CONVERGENCE

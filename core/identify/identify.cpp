@@ -247,7 +247,14 @@ bool beatsNoiseNull(Loop& L, Round& R, Tried& t) {
     const bool numerics = L.opt.nullNumerics && made == 1;
     const NullGains ng = projectionGainNull(projectionBases(J0, Jc), blocks, r0.size(), L.opt.nullReplicas,
                                             L.opt.seed + 7919u * R.number, numerics ? &d : nullptr);
-    sc.gain = base.ss - t.fit.ss;
+    // The effect's own gain: over the better of the current model's fit and the current model at
+    // the candidate's point with the effect removed. A candidate fit that also moved the current
+    // model's parameters into a better minimum of that model is not credited with that part (a
+    // viscous_damping fit ending with ζ inside the rig's baseline range is the baseline itself).
+    const Spec& curSpec = sw ? R.segSpec : L.spec;
+    const double ssWithout = evalSS(L.cx, curSpec, withoutEffect(L.cx, curSpec, sc.name, t.fit.values), L.fitIdx);
+    sc.ownMinimumGain = std::isfinite(ssWithout) ? std::max(0.0, base.ss - ssWithout) : 0.0;
+    sc.gain = base.ss - sc.ownMinimumGain - t.fit.ss;
     sc.nullGain = ng.quantile(1.0 - L.opt.nullAlpha);
     sc.nullReplicas = static_cast<int>(ng.gains.size());
     if (numerics) sc.numericsGain = ng.offsetGain;
@@ -257,7 +264,11 @@ bool beatsNoiseNull(Loop& L, Round& R, Tried& t) {
                 " noise replicas of these runs (" + std::to_string(sc.nullGain) + ")" +
                 (numerics ? " carrying the prediction's numerical error (alone it gives " + std::to_string(ng.offsetGain) + ")"
                           : std::string()) +
-                ": noise alone gives as much";
+                ": noise alone gives as much" +
+                (sc.ownMinimumGain > 0.0 ? " (the current model at the candidate's point without the effect already "
+                                           "lowers the sum of squares by " + std::to_string(sc.ownMinimumGain) +
+                                           ": that part is the current model's own, not the effect's)"
+                                         : std::string());
     return false;
 }
 

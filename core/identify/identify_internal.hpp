@@ -174,6 +174,11 @@ bool residualsOver(const Context& cx, const Spec& spec, const std::vector<size_t
                    std::vector<double>& r, double& ss, double& n);
 
 std::vector<FitParameter> parameters(const Context& cx, const Spec& spec, const std::map<std::string, double>& start);
+// The point `vals` of a model with effect e, as a point of the model `without` (e absent): e's
+// parameters removed, and one that continues a baseline parameter (viscous_damping's ζ continues
+// the rig's ζ) handing its value back to that parameter, clamped to its range in `without`.
+std::map<std::string, double> withoutEffect(const Context& cx, const Spec& without, const std::string& e,
+                                            std::map<std::string, double> vals);
 // Which finite-difference Jacobian a fit's solver uses (IdentifyOptions::forwardJacobian).
 // NearOptimum: a refit started at the optimum of the full problem (leave-one-run-out) takes
 // central differences whatever the option: its gradient is small there, of the order of a

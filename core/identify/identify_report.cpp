@@ -116,6 +116,7 @@ nlohmann::json candidateJson(const CandidateScore& c) {
                                                              : nlohmann::json{{"gain", num(c.gain)},
                                                                               {"null_quantile", num(c.nullGain)},
                                                                               {"numerics_gain", c.numericsGain >= 0 ? num(c.numericsGain) : nlohmann::json(nullptr)},
+                                                                              {"own_minimum_gain", c.ownMinimumGain >= 0 ? num(c.ownMinimumGain) : nlohmann::json(nullptr)},
                                                                               {"replicas", c.nullReplicas}}},
                           {"size_test", c.sizeParam.empty() ? nlohmann::json(nullptr)
                                                             : nlohmann::json{{"parameter", c.sizeParam},

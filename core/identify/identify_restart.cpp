@@ -190,10 +190,7 @@ bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried) {
     std::vector<std::string> from;
     for (const Tried& t : tried) {
         if (t.spec.segments != L.spec.segments) continue;
-        std::map<std::string, double> v = t.fit.values;
-        for (auto it = v.begin(); it != v.end();)
-            it = it->first.rfind(t.sc.name + ".", 0) == 0 ? v.erase(it) : std::next(it);
-        points.push_back(std::move(v));
+        points.push_back(withoutEffect(L.cx, L.spec, t.sc.name, t.fit.values));
         from.push_back(t.sc.name);
     }
     RestartTry r =

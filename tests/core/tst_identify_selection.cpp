@@ -125,6 +125,33 @@ private slots:
         QVERIFY(sc2.sizeStderr > 1e-8);
     }
 
+    // A candidate's point as a point of the model without it (withoutEffect): its parameters
+    // go; viscous_damping's ζ continues the rig's ζ and is handed back, clamped to the rig's
+    // baseline range. Inside that range the candidate is the baseline itself (stickslip-cli
+    // synthesize --seed 1: a "viscous_damping" at ζ = 0.0055 was added on a set without an effect).
+    void withoutEffectHandsContinuedParameterBack() {
+        IdentifyOptions opt;
+        Context cx;
+        cx.opt = &opt;
+        cx.anyDynamics = true;
+        const Spec base;
+        const std::map<std::string, double> inRange = {{"mu", 0.25}, {"m", 0.52}, {"viscous_damping.zeta", 0.0055}};
+        std::map<std::string, double> v = withoutEffect(cx, base, "viscous_damping", inRange);
+        QVERIFY(!v.count("viscous_damping.zeta"));
+        QCOMPARE(v.at("zeta"), 0.0055);
+        QCOMPARE(v.at("mu"), 0.25);
+        v = withoutEffect(cx, base, "viscous_damping", {{"mu", 0.25}, {"viscous_damping.zeta", 0.1}});
+        QCOMPARE(v.at("zeta"), ViscousDamping::kBaselineMax);
+        // An effect that continues nothing only loses its parameters.
+        v = withoutEffect(cx, base, "backlash", {{"mu", 0.25}, {"zeta", 0.006}, {"backlash.halfWidth_m", 5e-7}});
+        QCOMPARE(v.size(), size_t(2));
+        QCOMPARE(v.at("zeta"), 0.006);
+        // Prescribed set-up: no rig ζ to hand back to.
+        cx.anyDynamics = false;
+        v = withoutEffect(cx, base, "viscous_damping", inRange);
+        QVERIFY(!v.count("zeta") && !v.count("viscous_damping.zeta"));
+    }
+
     // Five runs that all improve by very different amounts (D03's lag): the exact sign-flip
     // test decides (p = 1/32), and the pooled and paired held-out tests pass.
     void heterogeneousGainsPassTheExactTest() {

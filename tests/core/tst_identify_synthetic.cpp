@@ -18,6 +18,7 @@
 #include "core/identify/identify.hpp"
 #include "core/identify/preprocess.hpp"
 #include "core/io/dataset.hpp"
+#include "rig_set_loader.hpp"
 
 using namespace stickslip;
 using namespace stickslip::identify;
@@ -53,28 +54,7 @@ const std::map<std::string, const char*> kKnownMiss = {
 
 // The first `nRuns` runs of a set, each cut to its first `maxSeconds` (all of it by default).
 std::vector<IdentifyRun> loadRuns(const std::string& set, int nRuns, double maxSeconds) {
-    const std::string dir = kShared + "/data/synthetic/" + set;
-    std::vector<std::string> files;
-    for (int i = 1; i <= nRuns; ++i) files.push_back(dir + "/run_0" + std::to_string(i) + ".csv");
-    io::DatasetOptions dopt;
-    dopt.manifestPath = dir + "/manifest.json";
-    io::Dataset ds;
-    io::DatasetError err;
-    if (!io::loadDataset(files, dopt, ds, err)) qFatal("%s", err.what().c_str());
-    std::vector<IdentifyRun> runs;
-    for (io::Run& r : ds.runs) {
-        const std::vector<double>& t = r[io::Signal::Time];
-        const size_t keep = std::lower_bound(t.begin(), t.end(), t.front() + maxSeconds) - t.begin();
-        for (std::vector<double>& ch : r.channels)
-            if (ch.size() > keep) ch.resize(keep);
-        CleanRun c;
-        IdentifyRun ir;
-        std::string why;
-        if (!preprocessRun(r, PreprocessSettings{}, c, &why) || !makeIdentifyRun(c, SetupKind::Dynamics, ir, &why))
-            qFatal("%s", why.c_str());
-        runs.push_back(std::move(ir));
-    }
-    return runs;
+    return rigset::loadRuns(kShared + "/data/synthetic/" + set, nRuns, maxSeconds);
 }
 
 // The loop on the first `nRuns` runs of a set, each cut to its first `maxSeconds`.
