@@ -91,6 +91,10 @@ void addSynthesizeCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--effect", o->effects,
                     "Effect to switch on: NAME=VALUE[,VALUE...], its parameters in catalogue order (repeatable), e.g. "
                     "backlash=4e-5, stick_healing=0.0115,0.00157,1.66e-5");
+    cmd->add_option("--noise-scale", o->synth.noiseScale,
+                    "Multiply the measurement noise and the mains pickup by this, 0 ... 100 (0: the noise-free twin of "
+                    "the set: same law, runs and draws)")
+        ->capture_default_str();
     cmd->callback([o, &exitCode] { runSynthesize(*o, exitCode); });
 }
 

@@ -105,11 +105,12 @@ bool simulateRun(const SynthOptions& o, const ExtendedModel& truth, double zeta,
         const double t = static_cast<double>(i - skip) / o.sampleRate_Hz;
         const size_t k = static_cast<size_t>(i);
         run.t_s.push_back(t);
-        run.stage_m.push_back(tr.stage_m[k] + o.dispNoise_m * nd(rng));
-        run.slider_m.push_back(tr.slider_m[k] + o.dispNoise_m * nd(rng));
-        run.force_N.push_back(tr.measuredForce_N[k] + o.forceNoise_N * nd(rng) + pf.at(t));
-        run.normal_N.push_back(run.tN_N + o.forceNoise_N * nd(rng) + pn.at(t));
-        run.accel_mps2.push_back(tr.sliderAccel_mps2[k] + o.accelNoise_mps2 * nd(rng));
+        const double s = o.noiseScale;
+        run.stage_m.push_back(tr.stage_m[k] + s * o.dispNoise_m * nd(rng));
+        run.slider_m.push_back(tr.slider_m[k] + s * o.dispNoise_m * nd(rng));
+        run.force_N.push_back(tr.measuredForce_N[k] + s * (o.forceNoise_N * nd(rng) + pf.at(t)));
+        run.normal_N.push_back(run.tN_N + s * (o.forceNoise_N * nd(rng) + pn.at(t)));
+        run.accel_mps2.push_back(tr.sliderAccel_mps2[k] + s * o.accelNoise_mps2 * nd(rng));
     }
     return true;
 }
@@ -132,6 +133,7 @@ ParamIssues SynthOptions::validate() const {
         {"disp_noise", dispNoise_m}, {"force_noise", forceNoise_N}, {"accel_noise", accelNoise_mps2}};
     for (const auto& [f, v] : noises)
         if (!(v >= 0.0 && std::isfinite(v))) out.push_back({f, v, ">= 0, finite"});
+    if (!(noiseScale >= 0.0 && noiseScale <= 100.0)) out.push_back({"noise_scale", noiseScale, "0 ... 100"});
     if (!(nominalMass_kg > 0.0 && std::isfinite(nominalMass_kg))) out.push_back({"nominal_mass", nominalMass_kg, "> 0"});
     const std::pair<const char*, DrawRange> rs[] = {
         {"ranges.mass", ranges.mass_kg}, {"ranges.zeta", ranges.zeta}, {"ranges.mu", ranges.mu},
@@ -218,7 +220,7 @@ SynthResult synthesizeRigSet(const SynthOptions& o) {
                   {"tN_ref_N", m.tNref_N},
                   {"model", "StickSlip Lab extended law (backward Euler return map + Newmark), h = 1/(" +
                                 std::to_string(o.stepsPerSample) + " x sample rate)"},
-                  {"noise", {{"disp_m", o.dispNoise_m}, {"force_N", o.forceNoise_N}, {"accel_mps2", o.accelNoise_mps2}}},
+                  {"noise", {{"disp_m", o.noiseScale * o.dispNoise_m}, {"force_N", o.noiseScale * o.forceNoise_N}, {"accel_mps2", o.noiseScale * o.accelNoise_mps2}, {"scale", o.noiseScale}}},
                   {"runs", aruns}};
     res.ok = true;
     return res;

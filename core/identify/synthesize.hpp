@@ -46,6 +46,10 @@ struct SynthOptions {
     double sampleRate_Hz = 1000.0;   // recording rate [Hz]
     int stepsPerSample = 120;        // integration steps per recorded sample (h = 8.3 µs at 1 kHz)
     double dispNoise_m = 1e-5, forceNoise_N = 0.05, accelNoise_mps2 = 0.05;  // white noise, RMS
+    // Multiplies every channel's noise and the mains pickup, in [0, 100]. The draws stay the same
+    // (law, runs, noise sequence), only their size changes: 0 makes the noise-free twin of a set,
+    // to tell what the loop does because of noise from what it does because of its model.
+    double noiseScale = 1.0;
     double nominalMass_kg = 0.53;    // what the manifest states (the true mass is drawn)
     // Effects switched on: catalogue name and its parameters in catalogue order (effects/registry.hpp).
     std::vector<std::pair<std::string, std::vector<double>>> effects;

@@ -85,6 +85,31 @@ private slots:
         QVERIFY(epsT >= rg.epsT_N_per_m.lo && epsT <= rg.epsT_N_per_m.hi);
     }
 
+    // The noise scale changes the noise alone: the same law and runs, the noise-free twin's
+    // channels are the simulation itself (the normal force exactly t_N), and a scale of 2 puts
+    // every channel twice as far from it.
+    void noiseScaleScalesTheNoiseAlone() {
+        SynthOptions o0 = small(4), o1 = small(4), o2 = small(4);
+        o0.noiseScale = 0.0;
+        o2.noiseScale = 2.0;
+        const SynthResult r0 = synthesizeRigSet(o0), r1 = synthesizeRigSet(o1), r2 = synthesizeRigSet(o2);
+        QVERIFY(r0.ok && r1.ok && r2.ok);
+        QCOMPARE(r0.answer["baseline_params"].dump(), r1.answer["baseline_params"].dump());
+        QCOMPARE(double(r0.answer["noise"]["force_N"]), 0.0);
+        QCOMPARE(double(r2.answer["noise"]["disp_m"]), 2.0 * o1.dispNoise_m);
+        for (double v : r0.runs[0].normal_N) QCOMPARE(v, r0.runs[0].tN_N);
+        for (size_t k = 0; k < r0.runs[0].t_s.size(); ++k) {
+            const double d1 = r1.runs[0].force_N[k] - r0.runs[0].force_N[k], d2 = r2.runs[0].force_N[k] - r0.runs[0].force_N[k];
+            QVERIFY(std::abs(d2 - 2.0 * d1) < 1e-9);
+            const double x1 = r1.runs[0].slider_m[k] - r0.runs[0].slider_m[k], x2 = r2.runs[0].slider_m[k] - r0.runs[0].slider_m[k];
+            QVERIFY(std::abs(x2 - 2.0 * x1) < 1e-15);
+        }
+        SynthOptions bad = small(4);
+        bad.noiseScale = -1.0;
+        const std::string m = formatIssues(bad.validate());
+        QVERIFY2(m.find("noise_scale = -1") != std::string::npos, m.c_str());
+    }
+
     // Wear accumulates over the runs in file order (pre-roll included): the second run starts
     // where the first ended.
     void slipCarriesOver() {
