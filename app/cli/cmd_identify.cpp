@@ -127,6 +127,13 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
         ->capture_default_str();
     cmd->add_option("--null-replicas", o->req.options.nullReplicas, "noise replicas of the null distribution (0: off)")
         ->capture_default_str();
+    cmd->add_option("--simulated-null-replicas", o->req.options.simulatedNullReplicas,
+                    "dynamics: replicas of the recordings, simulated from the current model (corrected by its fit's own "
+                    "bias) with their noise and cleaned and fitted as the data were, whose gains a candidate about to be "
+                    "added must exceed (0: off), in [0, 1000]")->capture_default_str();
+    cmd->add_option("--simulated-null-bias-steps", o->req.options.simulatedNullBiasSteps,
+                    "simulated null: fixed-point steps that move the replicas' model until their fits land where the "
+                    "data's fit did (indirect inference), in [0, 20]")->capture_default_str();
     cmd->add_flag("--null-numerics,!--no-null-numerics", o->req.options.nullNumerics,
                   "the noise replicas also carry the residual's numerical part (the residual minus that of the same model "
                   "predicted from every recorded sample, or with 4x the law steps, refitted to the same samples), so an "

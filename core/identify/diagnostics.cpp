@@ -200,6 +200,52 @@ static double incompleteBeta(double a, double b, double x) {
     return 1.0 - std::exp(lbt) * betaCf(b, a, 1.0 - x) / b;
 }
 
+// Regularised lower incomplete gamma P(a, x) (Numerical Recipes 6.2: series, continued fraction).
+static double incompleteGammaP(double a, double x) {
+    if (!(x > 0.0)) return 0.0;
+    const double lead = a * std::log(x) - x - std::lgamma(a);
+    if (x < a + 1.0) {
+        double ap = a, sum = 1.0 / a, del = sum;
+        for (int n = 0; n < 1000 && std::abs(del) > std::abs(sum) * 1e-15; ++n) {
+            ap += 1.0;
+            del *= x / ap;
+            sum += del;
+        }
+        return std::min(1.0, sum * std::exp(lead));
+    }
+    const double tiny = 1e-300;
+    double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
+    for (int i = 1; i < 1000; ++i) {
+        const double an = -i * (i - a);
+        b += 2.0;
+        d = an * d + b;
+        if (std::abs(d) < tiny) d = tiny;
+        c = b + an / c;
+        if (std::abs(c) < tiny) c = tiny;
+        d = 1.0 / d;
+        const double del = d * c;
+        h *= del;
+        if (std::abs(del - 1.0) < 1e-15) break;
+    }
+    return std::max(0.0, 1.0 - std::exp(lead) * h);
+}
+
+double gammaCdf(double x, double shape, double scale) {
+    if (!(shape > 0.0 && scale > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    return incompleteGammaP(shape, x / scale);
+}
+
+double gammaQuantile(double p, double shape, double scale) {
+    if (!(p > 0.0 && p < 1.0 && shape > 0.0 && scale > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    double lo = 0.0, hi = shape * scale;  // the mean; grow until the cdf passes p
+    while (gammaCdf(hi, shape, scale) < p) hi *= 2.0;
+    for (int i = 0; i < 200 && hi - lo > 1e-14 * hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (gammaCdf(mid, shape, scale) < p ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
 double studentTSurvival(double t, double dof) {
     if (!(dof > 0) || std::isnan(t)) return std::numeric_limits<double>::quiet_NaN();
     // P(|T| > |t|) = I_{ν/(ν+t²)}(ν/2, 1/2).

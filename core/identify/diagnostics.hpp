@@ -88,6 +88,11 @@ double integratedAcfTime(const std::vector<double>& acf);
 // fraction; the quantile by bisection on the tail. Used by the selection of identify.
 double studentTSurvival(double t, double dof);
 double studentTQuantile(double p, double dof);
+// The gamma distribution with shape k > 0 and scale θ > 0: P(X ≤ x) (regularised lower incomplete
+// gamma by its series below k + 1, by continued fraction above), and the quantile x with
+// P(X ≤ x) = p (0 < p < 1) by bisection. A scaled χ²_ν is the gamma of shape ν/2.
+double gammaCdf(double x, double shape, double scale);
+double gammaQuantile(double p, double shape, double scale);
 
 // Paired comparison of two models over K independent held-out units (runs): d_i = ln(before_i /
 // after_i) with before/after the held-out mean squared errors of unit i (units with a missing or

@@ -11,6 +11,7 @@
 
 #include "identify_internal.hpp"
 #include "identify_loop.hpp"
+#include "simulated_null.hpp"
 
 namespace stickslip::identify {
 
@@ -29,6 +30,12 @@ ParamIssues IdentifyOptions::validate() const {
     range("restart_margin", restartMargin, restartMargin >= 0, ">= 0");
     range("null_alpha", nullAlpha, nullAlpha > 0 && nullAlpha < 1, "in (0, 1)");
     range("null_replicas", nullReplicas, nullReplicas >= 0 && nullReplicas <= 100000, "in [0, 100000]");
+    range("simulated_null_replicas", simulatedNullReplicas, simulatedNullReplicas >= 0 && simulatedNullReplicas <= 1000,
+          "in [0, 1000]");
+    range("simulated_null_steps_per_sample", simulatedNullStepsPerSample,
+          simulatedNullStepsPerSample >= 1 && simulatedNullStepsPerSample <= 1000, "in [1, 1000]");
+    range("simulated_null_bias_steps", simulatedNullBiasSteps, simulatedNullBiasSteps >= 0 && simulatedNullBiasSteps <= 20,
+          "in [0, 20]");
     range("held_out_alpha", heldOutAlpha, heldOutAlpha > 0 && heldOutAlpha < 1, "in (0, 1)");
     range("identifiability_alpha", identifiabilityAlpha, identifiabilityAlpha > 0 && identifiabilityAlpha < 1, "in (0, 1)");
     for (const ParamIssue& i : selfTest.validate()) out.push_back(i);
@@ -272,6 +279,34 @@ bool beatsNoiseNull(Loop& L, Round& R, Tried& t) {
     return false;
 }
 
+// (4) The candidate's own gain against what replicas of the fit runs, simulated from the current
+// model and cleaned and fitted as the data were, give (simulated_null.hpp). False, with the
+// reason in t.sc, when they give as much. A null that cannot run (runs given cleaned, prescribed
+// runs) leaves the verdict to tests (1)-(3) and says so.
+bool beatsSimulatedNull(Loop& L, Round& R, Tried& t) {
+    CandidateScore& sc = t.sc;
+    L.progress(R.label() + ": simulated null of " + sc.name, 1.0);
+    const SimulatedNull sn = simulatedGainNull(L.cx, L.spec, L.cur.values, t.spec, t.fit.values, L.fitIdx,
+                                               L.opt.simulatedNullReplicas, L.opt.seed + 104729u * R.number, L.res.fits);
+    if (!sn.ran) {
+        sc.simulatedNullNote = sn.note;
+        return !L.cancelled();
+    }
+    sc.simulatedGains = sn.gains;
+    sc.simulatedNullModel = sn.model;
+    sc.simulatedNullGain = momentMatchedGammaQuantile(sn.gains, 1.0 - L.opt.nullAlpha);
+    const double gain = sc.gain != CandidateScore::kNoTest ? sc.gain : L.cur.ss - t.fit.ss;
+    if (gain > sc.simulatedNullGain) return true;
+    sc.reason = "gain in the sum of squares " + std::to_string(gain) + " is within the " +
+                std::to_string(100.0 * (1.0 - L.opt.nullAlpha)) + " % quantile (" + std::to_string(sc.simulatedNullGain) +
+                ") of what " + std::to_string(sn.gains.size()) +
+                " replicas of these runs simulated from the current model, with their noise, give after the same "
+                "cleaning and fits (mean " +
+                std::to_string(std::accumulate(sn.gains.begin(), sn.gains.end(), 0.0) / sn.gains.size()) +
+                "): the chain alone gives as much";
+    return false;
+}
+
 // The selection rule (IdentifyOptions in identify.hpp): in order of ΔBIC, the first candidate that
 // passes every test is chosen; the others get the test they failed as their reason. Returns the
 // chosen index (-1: none) with its held-out errors and the held-out error it is compared with.
@@ -325,6 +360,7 @@ int selectCandidate(Loop& L, Round& R, std::vector<Tried>& tried, ModelErrors& m
         if (!passesSelection(L.cx, sc, tried[ti].fit, ref, e, loo, L.valIdx.empty() ? L.fitIdx : L.valIdx,
                              L.curDiag.integratedAcfTime))
             continue;
+        if (L.opt.simulatedNullReplicas > 0 && !beatsSimulatedNull(L, R, tried[ti])) continue;
         chosen = static_cast<int>(ti);
         me = std::move(e);
         heldOutRef = ref.validationNrmse;

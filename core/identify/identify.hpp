@@ -27,6 +27,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,10 @@ struct IdentifyRun {
     // so that both sides of the residual have lost the same corners and harmonics.
     bool filtered = false;
     FilterSettings filters;
+    // The recording this run was cleaned from (before any filter), for the simulated null
+    // (IdentifyOptions::simulatedNullReplicas): replicas of it are made from the fitted model and
+    // cleaned again by IdentifyOptions::reprepare. Null when the caller gave the run cleaned only.
+    std::shared_ptr<const io::Run> recording;
 };
 
 // From a preprocessed run (samples [begin, end)); false with a message if signals are missing.
@@ -141,6 +146,30 @@ struct IdentifyOptions {
     // gained 0.317 in the sum of squares, 0.320 of it numerical (docs/identify-results.md,
     // session 38).
     bool nullNumerics = true;
+    // (4) simulated null (simulated_null.cpp), the last test of a candidate about to be added,
+    // dynamics runs: `simulatedNullReplicas` replicas of the fit runs' recordings are simulated
+    // from the current model over the measured drive, given the noise each recorded channel has
+    // (white, its level from the recording's third differences) and the force's measured mains
+    // pickup, and cleaned, prepared and fitted exactly as the data were (current model and
+    // candidate, warm-started at their fits to the data). The candidate's own gain must exceed
+    // the (1 − nullAlpha) quantile of the gamma distribution with the replicas' mean and variance
+    // of gain. Unlike the linearised noise null (1b) it carries what the whole chain does to a
+    // model without the effect: the cleaning filters, the noise through them into the equation
+    // error's inputs, and the fit's nonlinearity (on sets made by `stickslip-cli synthesize`
+    // without an effect, a false sensor mass gained 11 x the linearised null's quantile;
+    // docs/identify-results.md, session 41). The replicas' model is the fit corrected for its own
+    // bias (simulatedNullBiasSteps). 0: off, the default until it has been measured on every set
+    // (session 41 ran it on two); needs `reprepare` and the runs' `recording` (the pipeline, so
+    // the CLI and the app, sets both).
+    int simulatedNullReplicas = 0;
+    int simulatedNullStepsPerSample = 40;
+    // Fixed-point steps of indirect inference before the null's replicas are made: each simulates
+    // max(2, replicas/2) replicas of the replicas' model, refits them and moves that model by the
+    // data's fit minus the replicas' mean fit (simulated_null.cpp). 0: replicas of the fit itself.
+    int simulatedNullBiasSteps = 2;  // Newmark steps per recorded sample of the replicas' simulation
+    // Cleans a replica recording as the data were cleaned (the caller's preprocessing and set-up);
+    // false with `why` when it cannot. Set by the pipeline (pipeline.cpp).
+    std::function<bool(const io::Run& recording, IdentifyRun& out, std::string& why)> reprepare;
     // (0) confounding: a candidate whose size parameter trades off with an added effect's in
     // their joint fit — variance inflation 1/(1 − r²) of the two sizes above this, r their
     // correlation at the optimum — is reported "confounded with" that effect and not added:
@@ -239,6 +268,12 @@ struct CandidateScore {
     double gain = kNoTest, nullGain = kNoTest;
     int nullReplicas = 0;
     double numericsGain = kNoTest;  // ‖Qcᵀ d‖² of the numerical part d alone (IdentifyOptions::nullNumerics)
+    // (4) simulated null: the gains of the replicas (sorted) and the quantile the gain must exceed
+    // (empty / kNoTest when it did not run); why it could not run, if it could not.
+    std::vector<double> simulatedGains;
+    double simulatedNullGain = kNoTest;
+    std::string simulatedNullNote;
+    std::map<std::string, double> simulatedNullModel;  // the replicas' model (the current one corrected by its fit's bias)
     // The part of the fit's gain the current model reaches by itself at the candidate's point with
     // the effect removed (a better minimum of the current model): not credited to the effect.
     double ownMinimumGain = kNoTest;

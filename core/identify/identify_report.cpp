@@ -118,6 +118,22 @@ nlohmann::json candidateJson(const CandidateScore& c) {
                                                                               {"numerics_gain", c.numericsGain >= 0 ? num(c.numericsGain) : nlohmann::json(nullptr)},
                                                                               {"own_minimum_gain", c.ownMinimumGain >= 0 ? num(c.ownMinimumGain) : nlohmann::json(nullptr)},
                                                                               {"replicas", c.nullReplicas}}},
+                          {"simulated_null", c.simulatedNullGain == CandidateScore::kNoTest && c.simulatedNullNote.empty()
+                                                 ? nlohmann::json(nullptr)
+                                                 : nlohmann::json{{"gains", [&] {
+                                                                       nlohmann::json a = nlohmann::json::array();
+                                                                       for (double v : c.simulatedGains) a.push_back(num(v));
+                                                                       return a;
+                                                                   }()},
+                                                                  {"quantile", c.simulatedNullGain == CandidateScore::kNoTest
+                                                                                   ? nlohmann::json(nullptr)
+                                                                                   : num(c.simulatedNullGain)},
+                                                                  {"model", [&] {
+                                                                       nlohmann::json o = nlohmann::json::object();
+                                                                       for (const auto& [n, v] : c.simulatedNullModel) o[n] = num(v);
+                                                                       return o;
+                                                                   }()},
+                                                                  {"note", c.simulatedNullNote}}},
                           {"size_test", c.sizeParam.empty() ? nlohmann::json(nullptr)
                                                             : nlohmann::json{{"parameter", c.sizeParam},
                                                                              {"value", num(c.sizeValue)},

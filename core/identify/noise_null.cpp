@@ -1,4 +1,5 @@
 #include "noise_null.hpp"
+#include "diagnostics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -98,6 +99,18 @@ NullGains projectionGainNull(const ProjectionBases& pb, const std::vector<NoiseB
     }
     std::sort(out.gains.begin(), out.gains.end());
     return out;
+}
+
+double momentMatchedGammaQuantile(const std::vector<double>& gains, double p) {
+    double mean = 0, var = 0, largest = 0;
+    const double n = static_cast<double>(gains.size());
+    for (double g : gains) {
+        mean += std::max(g, 0.0) / n;
+        largest = std::max(largest, g);
+    }
+    for (double g : gains) var += (std::max(g, 0.0) - mean) * (std::max(g, 0.0) - mean) / std::max(n - 1.0, 1.0);
+    if (gains.size() < 2 || !(var > 0.0) || !(mean > 0.0)) return largest;
+    return gammaQuantile(p, mean * mean / var, var / mean);
 }
 
 }  // namespace stickslip::identify

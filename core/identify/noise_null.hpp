@@ -69,4 +69,10 @@ NullGains projectionGainNull(const Eigen::MatrixXd& J0, const Eigen::MatrixXd& J
 NullGains projectionGainNull(const ProjectionBases& pb, const std::vector<NoiseBlock>& blocks, size_t rows, int replicas,
                              uint64_t seed, const std::vector<double>* offset = nullptr);
 
+// The (p) quantile of the gamma distribution with the mean and variance of `gains` (Satterthwaite's
+// scaled χ²): a null made of few replicas, each a full refit, whose gains are a noise part
+// (σ² χ²_q in the linearised model) plus a systematic part, both carried by the moment match.
+// Negative gains count as 0. Fewer than 2 gains, or gains without spread: their largest (≥ 0).
+double momentMatchedGammaQuantile(const std::vector<double>& gains, double p);
+
 }  // namespace stickslip::identify

@@ -261,14 +261,23 @@ bool runIdentifyRequest(const IdentifyRequest& o, IdentifyResult& res, nlohmann:
     std::vector<CleanRun> fitClean, valClean;
     if (!cleanRuns(fitData, pre, fitClean, status) || !cleanRuns(valData, pre, valClean, status)) return false;
     std::vector<IdentifyRun> runs;
-    for (int pass = 0; pass < 2; ++pass)
-        for (const CleanRun& c : pass == 0 ? fitClean : valClean) {
+    for (int pass = 0; pass < 2; ++pass) {
+        const io::Dataset& raw = pass == 0 ? fitData : valData;
+        const std::vector<CleanRun>& clean = pass == 0 ? fitClean : valClean;
+        for (size_t i = 0; i < clean.size(); ++i) {
             IdentifyRun ir;
             std::string e;
-            if (!makeIdentifyRun(c, setup, ir, &e)) return fail(status, PipelineCode::BadInput, e);
+            if (!makeIdentifyRun(clean[i], setup, ir, &e)) return fail(status, PipelineCode::BadInput, e);
             ir.validation = pass == 1;
+            ir.recording = std::make_shared<const io::Run>(raw.runs[i]);
             runs.push_back(std::move(ir));
         }
+    }
+    // Replicas of the recordings (the simulated null) are cleaned exactly as the data were.
+    opt.reprepare = [pre, setup](const io::Run& rec, IdentifyRun& out, std::string& why) {
+        CleanRun c;
+        return preprocessRun(rec, pre, c, &why) && makeIdentifyRun(c, setup, out, &why);
+    };
     opt.freeLaw = splitList(o.free);
     for (const std::string& n : opt.freeLaw) {
         FitParameter fp;

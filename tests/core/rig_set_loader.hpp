@@ -2,6 +2,8 @@
 // the way the CLI does (manifest, cleaning, dynamics set-up), for the identify tests.
 #pragma once
 
+#include <memory>
+
 #include <QtTest/QtTest>
 
 #include <algorithm>
@@ -14,8 +16,17 @@
 
 namespace rigset {
 
-// The first `nRuns` runs of the set in `dir`, each cut to its first `maxSeconds`.
-inline std::vector<stickslip::identify::IdentifyRun> loadRuns(const std::string& dir, int nRuns, double maxSeconds) {
+// Cleans a recording as loadRuns does (IdentifyOptions::reprepare for the simulated null).
+inline bool reprepare(const stickslip::io::Run& rec, stickslip::identify::IdentifyRun& out, std::string& why) {
+    stickslip::identify::CleanRun c;
+    return stickslip::identify::preprocessRun(rec, stickslip::identify::PreprocessSettings{}, c, &why) &&
+           stickslip::identify::makeIdentifyRun(c, stickslip::SetupKind::Dynamics, out, &why);
+}
+
+// The first `nRuns` runs of the set in `dir`, each cut to its first `maxSeconds`; with
+// `withRecordings` each run keeps its (cut) recording, for the simulated null.
+inline std::vector<stickslip::identify::IdentifyRun> loadRuns(const std::string& dir, int nRuns, double maxSeconds,
+                                                              bool withRecordings = false) {
     using namespace stickslip;
     using namespace stickslip::identify;
     std::vector<std::string> files;
@@ -31,11 +42,10 @@ inline std::vector<stickslip::identify::IdentifyRun> loadRuns(const std::string&
         const size_t keep = std::lower_bound(t.begin(), t.end(), t.front() + maxSeconds) - t.begin();
         for (std::vector<double>& ch : r.channels)
             if (ch.size() > keep) ch.resize(keep);
-        CleanRun c;
         IdentifyRun ir;
         std::string why;
-        if (!preprocessRun(r, PreprocessSettings{}, c, &why) || !makeIdentifyRun(c, SetupKind::Dynamics, ir, &why))
-            qFatal("%s", why.c_str());
+        if (!reprepare(r, ir, why)) qFatal("%s", why.c_str());
+        if (withRecordings) ir.recording = std::make_shared<const io::Run>(r);
         runs.push_back(std::move(ir));
     }
     return runs;

@@ -43,6 +43,17 @@ private slots:
         QVERIFY(std::isnan(studentTQuantile(1.0, 3)));
         QVERIFY(std::isnan(studentTSurvival(1.0, 0)));
     }
+    void gammaDistribution() {
+        // χ²_1 and χ²_2 are gammas of shape 1/2 and 1, scale 2: their 95 % points 3.841 and −2 ln 0.05.
+        QVERIFY(std::abs(gammaQuantile(0.95, 0.5, 2.0) - 3.841458820694124) < 1e-8);
+        QVERIFY(std::abs(gammaQuantile(0.95, 1.0, 2.0) + 2.0 * std::log(0.05)) < 1e-8);
+        QVERIFY(std::abs(gammaQuantile(0.95, 5.0, 2.0) - 18.307038053275146) < 1e-7);  // χ²_10
+        QVERIFY(std::abs(gammaCdf(2.0, 1.0, 1.0) - (1.0 - std::exp(-2.0))) < 1e-12);
+        QVERIFY(std::abs(gammaCdf(30.0, 20.0, 1.0) - (1.0 - chiSquareSurvival(60.0, 40))) < 1e-9);  // continued fraction side
+        for (double p : {0.01, 0.5, 0.99}) QVERIFY(std::abs(gammaCdf(gammaQuantile(p, 3.7, 0.2), 3.7, 0.2) - p) < 1e-10);
+        QVERIFY(std::isnan(gammaQuantile(1.0, 1.0, 1.0)));
+        QVERIFY(std::isnan(gammaCdf(1.0, 0.0, 1.0)));
+    }
     void pairedTestAndJackknife() {
         // d = ln 2 in every unit: no spread, infinitely significant.
         const PairedTest same = pairedLogRatioTest({2, 4, 8}, {1, 2, 4});

@@ -3,6 +3,8 @@
 // and the one FFTW planner lock of core/analysis.
 #include <QtTest>
 
+#include <random>
+
 #include <Eigen/Dense>
 #include <atomic>
 #include <chrono>
@@ -86,6 +88,22 @@ private slots:
             QVERIFY(lock.try_lock());  // released after planning and destroying
             lock.unlock();
         }
+    }
+
+    void whiteNoiseRmsIgnoresASmoothSignalAndCorners() {
+        // A 2 N, 5 Hz sine with a jump every 0.2 s (stick–slip corners) at 1 kHz, plus white noise
+        // of 0.05 N: the estimate is the noise's RMS, not the signal's.
+        std::mt19937_64 rng(7);
+        std::normal_distribution<double> nd(0.0, 1.0);
+        std::vector<double> x(20000), clean(20000);
+        for (size_t i = 0; i < x.size(); ++i) {
+            const double t = 1e-3 * static_cast<double>(i);
+            clean[i] = 2.0 * std::sin(2.0 * std::numbers::pi * 5.0 * t) + ((i / 200) % 2 ? 0.5 : -0.5);
+            x[i] = clean[i] + 0.05 * nd(rng);
+        }
+        QVERIFY2(std::abs(whiteNoiseRms(x) / 0.05 - 1.0) < 0.03, qPrintable(QString::number(whiteNoiseRms(x))));
+        QVERIFY(whiteNoiseRms(clean) < 0.002);
+        QCOMPARE(whiteNoiseRms({1.0, 2.0, 3.0}), 0.0);
     }
 
     void medianOddEvenEmpty() {

@@ -55,6 +55,35 @@ private slots:
                          "too): open, docs/identify-results.md, session 39", Continue);
         QVERIFY2(r.effectsAdded.empty(), r.effectsAdded.empty() ? "" : r.effectsAdded.front().name.c_str());
     }
+
+    // The simulated null (IdentifyOptions::simulatedNullReplicas) runs through the whole chain on a
+    // set with a real sensor mass (86 g, seed 108's size): replicas are made from the bias-corrected
+    // current model, their gains are far below the real one, and the effect is added.
+    void simulatedNullKeepsARealEffect() {
+        QTemporaryDir dir;
+        QVERIFY(dir.isValid());
+        SynthOptions o;
+        o.seed = 108;
+        o.runs = 3;
+        o.seconds = 8.0;
+        o.effects = {{"sensor_inertia", {0.086}}};
+        writeSet(o, dir.path());
+        IdentifyOptions opt;
+        opt.candidates = {"sensor_inertia"};
+        opt.simulatedNullReplicas = 2;
+        opt.simulatedNullBiasSteps = 1;
+        opt.reprepare = rigset::reprepare;
+        const IdentifyResult r = identifyEffects(rigset::loadRuns(dir.path().toStdString(), 3, INFINITY, true), opt);
+        QVERIFY2(r.ok, r.message.c_str());
+        QCOMPARE(r.candidates.size(), size_t{1});
+        const CandidateScore& c = r.candidates.front();
+        qInfo("gain %.4g, simulated null quantile %.4g (%s), %s", c.gain, c.simulatedNullGain, c.simulatedNullNote.c_str(),
+              c.accepted ? "added" : c.reason.c_str());
+        QCOMPARE(c.simulatedGains.size(), size_t{2});
+        QVERIFY(c.simulatedNullModel.count("mu") && c.simulatedNullModel.count("C1"));
+        QVERIFY(c.simulatedNullGain >= c.simulatedGains.back() && c.simulatedNullGain < c.gain);
+        QVERIFY(c.accepted);
+    }
 };
 
 QTEST_APPLESS_MAIN(TstIdentifySynthesized)

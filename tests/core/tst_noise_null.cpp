@@ -165,6 +165,22 @@ private slots:
         QCOMPARE(alone.Q0.cols(), Eigen::Index(0));
         QCOMPARE(alone.Qc.cols(), Eigen::Index(2));
     }
+    void momentMatchedGammaQuantileOfReplicaGains() {
+        // Many draws of 0.3 χ²_2: the matched gamma's 95 % point is that of 0.3 χ²_2 (5.99 × 0.3).
+        std::mt19937_64 rng(3);
+        std::chi_squared_distribution<double> chi(2.0);
+        std::vector<double> g(20000);
+        for (double& v : g) v = 0.3 * chi(rng);
+        QVERIFY(std::abs(momentMatchedGammaQuantile(g, 0.95) / (0.3 * 5.991464547107979) - 1.0) < 0.03);
+        // Few replicas: finite and above their mean; negatives count as 0; no spread: the largest.
+        const std::vector<double> few{0.2, 0.5, 0.1, 0.9, 0.3, 0.4, 0.25, 0.6};
+        QVERIFY(momentMatchedGammaQuantile(few, 0.95) > 0.7 && momentMatchedGammaQuantile(few, 0.95) < 2.0);
+        QCOMPARE(momentMatchedGammaQuantile({-1.0, -2.0}, 0.95), 0.0);
+        QCOMPARE(momentMatchedGammaQuantile({0.4, 0.4, 0.4}, 0.95), 0.4);
+        QCOMPARE(momentMatchedGammaQuantile({0.7}, 0.95), 0.7);
+        QCOMPARE(momentMatchedGammaQuantile({}, 0.95), 0.0);
+    }
+
     void quantileOfEmptyAndEdges() {
         NullGains g;
         QCOMPARE(g.quantile(0.95), 0.0);
