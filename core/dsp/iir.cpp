@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <complex>
 #include <numbers>
 
@@ -247,6 +248,16 @@ std::vector<double> filtfiltZeroExtended(const Sos& sos, const std::vector<doubl
     std::copy(x.begin(), x.end(), buf.begin() + static_cast<long>(pad + margin));
     filtfiltPadded(sos, buf, pad, n);
     return std::vector<double>(buf.begin() + static_cast<long>(pad + margin), buf.begin() + static_cast<long>(pad + margin + x.size()));
+}
+
+double groupDelayAtDc(const Sos& sos) {
+    double t = 0.0;
+    for (const Biquad& q : sos) {
+        const double b = q.b0 + q.b1 + q.b2, a = 1.0 + q.a1 + q.a2;
+        if (b == 0.0 || a == 0.0) return std::numeric_limits<double>::quiet_NaN();
+        t += (q.b1 + 2.0 * q.b2) / b - (q.a1 + 2.0 * q.a2) / a;
+    }
+    return t;
 }
 
 }  // namespace stickslip::dsp

@@ -21,6 +21,10 @@ Sos butterworthLowpass(int order, double cutoff_Hz, double sampleRate_Hz);
 Sos butterworthBandstop(int order, double low_Hz, double high_Hz, double sampleRate_Hz);
 // |H(e^{iω})| at frequency f.
 double sosMagnitude(const Sos& sos, double f_Hz, double sampleRate_Hz);
+// Group delay at zero frequency, in samples: Σ over sections of Σk·b_k/Σb_k − Σk·a_k/Σa_k
+// (−dφ/dω at ω = 0 of a rational H). The time scale over which the filter remembers its input;
+// 0 for an empty cascade; NaN for a section that blocks DC.
+double groupDelayAtDc(const Sos& sos);
 // Causal filtering with the steady-state initial conditions of x[0].
 std::vector<double> sosFilter(const Sos& sos, const std::vector<double>& x);
 // Zero-phase filtering: forward, then backward, with odd-reflection padding at both ends

@@ -485,6 +485,8 @@ void finishReport(Loop& L) {
 // How the runs were prepared and fitted, as the report states it.
 void describeSetup(const Context& cx, const IdentifyOptions& opt, int decimation, IdentifyResult& res) {
     res.decimation = decimation;
+    for (const Prepared& p : cx.runs)
+        if (p.run->setup == SetupKind::Dynamics) res.edgeGuard = std::max(res.edgeGuard, static_cast<int>(p.edgeGuard));
     res.jacobian = opt.forwardJacobian ? "forward" : "central";
     res.stateStep = opt.exactStateStep ? "constant_rate" : "backward_euler";
     // What the runs were prepared with (prepareContext decides per run), not a second rule.

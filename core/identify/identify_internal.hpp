@@ -37,6 +37,9 @@ struct Prepared {
     size_t dec = 1;  // recorded samples per decimated interval
     double invRmsF = 1.0;
     dsp::Sos predictionFilter;  // the run's cleaning filters at the decimated rate (those below its Nyquist)
+    // Dynamics law channel: compared samples keep this many samples from any sample it does not
+    // compare (IdentifyOptions::maskEdgeGuard): the filter's DC group delay, rounded up.
+    size_t edgeGuard = 0;
     // The prediction y as the cleaned measurement would show it: F + filter(mask·(y − F)), the
     // difference taken only where the prediction applies (mask; all samples when null), so the
     // stick phases that are not compared cannot leak into compared samples.

@@ -242,6 +242,10 @@ bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, 
         // saw D13 gain a false sensor mass (docs/identify-results.md).
         if (opt.recordedStepSlip && r.setup == SetupKind::Prescribed) prepareStepSlip(r, dec, opt.substeps, p);
         if (r.filtered && p.size() > 16) p.predictionFilter = predictionFilterAt(r.filters, 1.0 / (p.t[1] - p.t[0]));
+        if (opt.maskEdgeGuard && !p.predictionFilter.empty()) {
+            const double gd = dsp::groupDelayAtDc(p.predictionFilter);
+            p.edgeGuard = std::isfinite(gd) && gd > 0 ? static_cast<size_t>(std::ceil(gd)) : 0;
+        }
         if (r.setup == SetupKind::Dynamics) prepareSegments(r, dec, opt, p);
         cx.runs.push_back(std::move(p));
     }

@@ -169,7 +169,7 @@ nlohmann::json selectionJson(const IdentifyResult& r) {
                       {"null_alpha", num(r.nullAlpha)}, {"null_replicas", r.nullReplicas}, {"bic_margin", num(r.bicMargin)}, {"null_numerics", r.nullNumerics}, {"restart_margin", num(r.restartMargin)},
                       {"held_out_alpha", num(r.heldOutAlpha)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
                       {"tau_int_samples", num(r.tauInt)},
-                      {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation}, {"jacobian", r.jacobian},
+                      {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation}, {"law_channel_edge_guard_samples", r.edgeGuard}, {"jacobian", r.jacobian},
                       {"coordinates", r.coordinates},
                       {"state_step", r.stateStep}, {"law_input", r.lawInput},
                       {"residual", r.residual}, {"segments", r.segmentsUsed}};

@@ -18,6 +18,7 @@
 #include "core/analysis/fftw_lock.hpp"
 #include "core/analysis/spectrum.hpp"
 #include "core/dsp/fourier.hpp"
+#include "core/dsp/iir.hpp"
 #include "core/dsp/stats.hpp"
 
 using namespace stickslip::dsp;
@@ -88,6 +89,19 @@ private slots:
             QVERIFY(lock.try_lock());  // released after planning and destroying
             lock.unlock();
         }
+    }
+
+    void groupDelayAtDcOfTheCleaningFilters() {
+        // scipy.signal: butter(4, 100, fs=500, output='sos') has −dφ/dω(0) = 1.79833 samples; with
+        // butter(2, [55, 65], 'bandstop', fs=500) in cascade 2.12837.
+        const Sos lp = butterworthLowpass(4, 100.0, 500.0);
+        QVERIFY2(std::abs(groupDelayAtDc(lp) - 1.7983296) < 1e-5, qPrintable(QString::number(groupDelayAtDc(lp))));
+        Sos both = butterworthBandstop(2, 55.0, 65.0, 500.0);
+        both.insert(both.end(), lp.begin(), lp.end());
+        QVERIFY2(std::abs(groupDelayAtDc(both) - 2.1283669) < 1e-5, qPrintable(QString::number(groupDelayAtDc(both))));
+        QCOMPARE(groupDelayAtDc(Sos{}), 0.0);
+        QCOMPARE(groupDelayAtDc(Sos{Biquad{0.0, 1.0, 0.0, 0.0, 0.0}}), 1.0);  // a pure delay of one sample
+        QVERIFY(std::isnan(groupDelayAtDc(Sos{Biquad{1.0, -1.0, 0.0, 0.0, 0.0}})));  // blocks DC
     }
 
     void whiteNoiseRmsIgnoresASmoothSignalAndCorners() {
