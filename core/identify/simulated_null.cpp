@@ -158,7 +158,19 @@ SimulatedNull simulatedGainNull(const Context& cx, const Spec& cur, const std::m
     std::vector<size_t> idx(fitIdx.size());
     for (size_t k = 0; k < idx.size(); ++k) idx[k] = k;
     const std::string effect = cand.effects.empty() ? std::string() : cand.effects.back();
-    auto cancelled = [&] { return opt.cancel && opt.cancel->load(); };
+    std::map<std::string, double> model = curVals;
+    // A replica of the fit runs from `model`; false, with out.note saying why, when cancelled or
+    // when it cannot be made.
+    auto replica = [&](uint64_t sd, std::vector<IdentifyRun>& reps, Context& rc) {
+        if (opt.cancel && opt.cancel->load()) {
+            out.note = "cancelled";
+            return false;
+        }
+        std::string why;
+        if (replicaContext(cx, cur, model, fitIdx, sd, reps, rc, why)) return true;
+        out.note = "not run: " + why;
+        return false;
+    };
     // (a) The fit's own bias: replicas of the fitted model, refitted. The cleaning biases the
     // equation-error fit (a noise-free set refits C1 0.26 -> 2.0), and replicas of the biased model
     // lack what the data have (the data's false sensor mass gained 0.79, replicas of the fitted
@@ -166,24 +178,15 @@ SimulatedNull simulatedGainNull(const Context& cx, const Spec& cur, const std::m
     // Indirect inference (IdentifyOptions::simulatedNullBiasSteps fixed-point steps) moves the
     // replicas' model until their fits land where the data's did: in log scale for the positive
     // parameters, clamped to their ranges.
-    std::map<std::string, double> model = curVals;
     const int biasReplicas = std::max(2, replicas / 2);
     const std::vector<FitParameter> ps = parameters(cx, cur, curVals);
     for (int step = 0; step < std::max(0, opt.simulatedNullBiasSteps); ++step) {
         std::map<std::string, std::vector<double>> refit;
         for (int b = 0; b < biasReplicas; ++b) {
-            if (cancelled()) {
-                out.note = "cancelled";
-                return out;
-            }
             std::vector<IdentifyRun> reps;
             Context rc;
-            std::string why;
-            const uint64_t sd = seed + 7777777u * static_cast<uint64_t>(step + 1) + 1000003u * static_cast<uint64_t>(b);
-            if (!replicaContext(cx, cur, model, fitIdx, sd, reps, rc, why)) {
-                out.note = "not run: " + why;
+            if (!replica(seed + 7777777u * static_cast<uint64_t>(step + 1) + 1000003u * static_cast<uint64_t>(b), reps, rc))
                 return out;
-            }
             const FitOutcome f = fitSpec(rc, cur, curVals, idx, 1, fits, false, FitStart::NearOptimum);
             if (!f.ok) continue;
             for (const auto& [k, v] : f.values) refit[k].push_back(v);
@@ -206,17 +209,9 @@ SimulatedNull simulatedGainNull(const Context& cx, const Spec& cur, const std::m
     // from their fits to the data (the candidate from the replica's current fit with the effect as
     // the data gave it).
     for (int b = 0; b < replicas; ++b) {
-        if (cancelled()) {
-            out.note = "cancelled";
-            return out;
-        }
         std::vector<IdentifyRun> reps;
         Context rc;
-        std::string why;
-        if (!replicaContext(cx, cur, model, fitIdx, seed + 1000003u * static_cast<uint64_t>(b), reps, rc, why)) {
-            out.note = "not run: " + why;
-            return out;
-        }
+        if (!replica(seed + 1000003u * static_cast<uint64_t>(b), reps, rc)) return out;
         const FitOutcome f0 = fitSpec(rc, cur, curVals, idx, 1, fits, false, FitStart::NearOptimum);
         if (!f0.ok) {
             out.note = "not run: a replica's fit failed (" + f0.message + ")";
