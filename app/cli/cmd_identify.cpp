@@ -137,7 +137,7 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_flag("--mask-edge-guard,!--no-mask-edge-guard", o->req.options.maskEdgeGuard,
                   "dynamics: compare the law channel only on sliding samples farther than the prediction filter's "
                   "memory (its DC group delay) from a stuck one, where the filtered prediction is not a blend of model "
-                  "and measurement (default)")->capture_default_str();
+                  "and measurement (off by default)")->capture_default_str();
     cmd->add_flag("--null-numerics,!--no-null-numerics", o->req.options.nullNumerics,
                   "the noise replicas also carry the residual's numerical part (the residual minus that of the same model "
                   "predicted from every recorded sample, or with 4x the law steps, refitted to the same samples), so an "
