@@ -269,7 +269,8 @@ bool runIdentifyRequest(const IdentifyRequest& o, IdentifyResult& res, nlohmann:
             std::string e;
             if (!makeIdentifyRun(clean[i], setup, ir, &e)) return fail(status, PipelineCode::BadInput, e);
             ir.validation = pass == 1;
-            ir.recording = std::make_shared<const io::Run>(raw.runs[i]);
+            // Only the simulated null reads the recording: no copy of it otherwise.
+            if (opt.simulatedNullReplicas > 0) ir.recording = std::make_shared<const io::Run>(raw.runs[i]);
             runs.push_back(std::move(ir));
         }
     }
