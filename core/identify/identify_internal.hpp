@@ -40,6 +40,9 @@ struct Prepared {
     // Dynamics law channel: compared samples keep this many samples from any sample it does not
     // compare (IdentifyOptions::maskEdgeGuard): the filter's DC group delay, rounded up.
     size_t edgeGuard = 0;
+    // Dynamics law channel, fixed by the data: where the contact slides (|V| >= vStick; the
+    // prediction applies there) and, of those, the samples compared (slides eroded by edgeGuard).
+    std::vector<char> slides, compared;
     // The prediction y as the cleaned measurement would show it: F + filter(mask·(y − F)), the
     // difference taken only where the prediction applies (mask; all samples when null), so the
     // stick phases that are not compared cannot leak into compared samples.
@@ -223,6 +226,7 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
                                            std::map<std::string, double> vals, const std::vector<size_t>& idx);
 
 void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& opt, Prepared& p);
+void prepareLawMasks(double vStick_mps, Prepared& p);
 // Prepared::stepSlip of a run decimated by `dec` (p's decimated samples set): the recorded slip,
 // linear between recorded samples, at the ends of the `substeps` law steps of every interval.
 void prepareStepSlip(const IdentifyRun& r, size_t dec, int substeps, Prepared& p);

@@ -180,6 +180,21 @@ void prepareStepSlip(const IdentifyRun& r, size_t dec, int substeps, Prepared& p
 
 // Checks the runs, sets their accumulated slip, chooses the decimation and prepares every run
 // (decimated signals, weights, prediction filter, segments). False with `why` on bad input.
+// The dynamics law channel's masks (Prepared::slides, Prepared::compared): the filtered prediction
+// is the measurement outside `slides`, so within the filter's memory of a mask edge it mixes the
+// two; there it is not the model's, and `compared` leaves it out (IdentifyOptions::maskEdgeGuard).
+void prepareLawMasks(double vStick, Prepared& p) {
+    const size_t n = p.size();
+    p.slides.assign(n, 0);
+    for (size_t i = 0; i < n; ++i) p.slides[i] = std::abs(p.V[i]) >= vStick;
+    p.compared = p.slides;
+    const long g = static_cast<long>(p.edgeGuard), nn = static_cast<long>(n);
+    if (g <= 0) return;
+    for (long i = 0; i < nn; ++i)
+        if (!p.slides[static_cast<size_t>(i)])
+            for (long j = std::max(0L, i - g); j <= std::min(nn - 1, i + g); ++j) p.compared[static_cast<size_t>(j)] = 0;
+}
+
 bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, Context& cx, int& decimation,
                     std::string& why) {
     cx.opt = &opt;
@@ -246,7 +261,10 @@ bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, 
             const double gd = dsp::groupDelayAtDc(p.predictionFilter);
             p.edgeGuard = std::isfinite(gd) && gd > 0 ? static_cast<size_t>(std::ceil(gd)) : 0;
         }
-        if (r.setup == SetupKind::Dynamics) prepareSegments(r, dec, opt, p);
+        if (r.setup == SetupKind::Dynamics) {
+            prepareLawMasks(opt.stickVelocity_mps, p);
+            prepareSegments(r, dec, opt, p);
+        }
         cx.runs.push_back(std::move(p));
     }
     return true;

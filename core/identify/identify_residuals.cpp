@@ -194,26 +194,13 @@ bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, 
     // (elastic loading over ε_T, play, healing), so a compliant contact, a dead band or a
     // healed strength shape the force after each reversal; inside stick the measured slip's
     // noise times ε_T would swamp the comparison, and there the rig channel speaks instead.
-    const double vStick = cx.opt->stickVelocity_mps;
-    std::vector<char> mask(n, 0);
-    for (size_t i = 0; i < n; ++i) mask[i] = std::abs(p.V[i]) >= vStick;
-    const std::vector<double> Fp = p.filtered(measured, &mask);
-    // The filtered prediction is the measurement outside the mask, so within the filter's memory of
-    // a mask edge it mixes the two: there it is not the model's (IdentifyOptions::maskEdgeGuard).
-    if (p.edgeGuard > 0) {
-        const long g = static_cast<long>(p.edgeGuard), nn = static_cast<long>(n);
-        std::vector<char> kept = mask;
-        for (long i = 0; i < nn; ++i)
-            if (!mask[static_cast<size_t>(i)])
-                for (long j = std::max(0L, i - g); j <= std::min(nn - 1, i + g); ++j) kept[static_cast<size_t>(j)] = 0;
-        mask.swap(kept);
-    }
+    const std::vector<double> Fp = p.filtered(measured, &p.slides);
     const double mm = std::isfinite(mass) ? mass : run.nominalMass_kg;
     const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
     const double c = 2.0 * zeta * std::sqrt(run.stiffness_N_per_m * mm);
     for (size_t i = 0; i < n; ++i) {
         double e = 0;
-        const bool compared = mask[i];
+        const bool compared = p.compared[i];
         if (compared) {
             e = (Fp[i] - p.F[i]) * p.invRmsF;
             ss += e * e;

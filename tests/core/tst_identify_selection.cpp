@@ -69,6 +69,7 @@ Prepared prepared(const IdentifyRun& r) {
     p.a = r.accel_mps2;
     p.x = r.slider_m;
     p.xd = r.sliderVel_mps;
+    if (r.setup == SetupKind::Dynamics) prepareLawMasks(IdentifyOptions{}.stickVelocity_mps, p);
     return p;
 }
 
