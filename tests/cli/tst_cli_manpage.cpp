@@ -49,6 +49,20 @@ private slots:
         }
     }
 
+    // A two-way flag (--x,!--no-x) shows which of its two names is the default, in --help and in
+    // the man page: CLI11 prints only the negation's value ("--no-x{false}"), which read as if the
+    // default were off for flags that are on by default.
+    void twoWayFlagsShowTheirDefault() {
+        const auto help = runCli({"identify", "--help"});
+        QCOMPARE(help.exitCode, 0);
+        const QString text = QString::fromUtf8(help.out);
+        const QStringList on = {"--held-out-restart", "--exact-state-step", "--null-numerics", "--curve-coordinates"};
+        for (const QString& f : on) QVERIFY2(text.contains("=" + f + "\n"), qPrintable(f + " is on by default"));
+        QVERIFY(text.contains(QStringLiteral("=--no-mask-edge-guard\n")));
+        const auto man = runCli({"manpage"});
+        QVERIFY(QString::fromUtf8(man.out).contains(QStringLiteral("(default: \\-\\-held\\-out\\-restart)")));
+    }
+
     void writesAtomicallyToAFileAndManRendersIt() {
         QTemporaryDir dir;
         const QString file = dir.filePath(QStringLiteral("stickslip-cli.1"));
