@@ -72,6 +72,10 @@ struct IdentifyRun {
 
 // From a preprocessed run (samples [begin, end)); false with a message if signals are missing.
 bool makeIdentifyRun(const CleanRun& clean, SetupKind setup, IdentifyRun& out, std::string* error);
+// A recording cleaned by `pre` and made a run of `setup` (preprocessRun, then makeIdentifyRun):
+// what the pipeline does to each measured run, as IdentifyOptions::reprepare for the replicas.
+std::function<bool(const io::Run&, IdentifyRun&, std::string&)> recordingPreparer(const PreprocessSettings& pre,
+                                                                                  SetupKind setup);
 
 // How the dynamics set-up's residual is formed.
 //  EquationError (default): the law channel along the measured slip + the rig channel (above).

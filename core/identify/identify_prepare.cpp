@@ -77,6 +77,14 @@ bool makeIdentifyRun(const CleanRun& c, SetupKind setup, IdentifyRun& out, std::
     return true;
 }
 
+std::function<bool(const io::Run&, IdentifyRun&, std::string&)> recordingPreparer(const PreprocessSettings& pre,
+                                                                                  SetupKind setup) {
+    return [pre, setup](const io::Run& rec, IdentifyRun& out, std::string& why) {
+        CleanRun c;
+        return preprocessRun(rec, pre, c, &why) && makeIdentifyRun(c, setup, out, &why);
+    };
+}
+
 }  // namespace stickslip::identify
 
 namespace stickslip::identify::detail {

@@ -275,10 +275,7 @@ bool runIdentifyRequest(const IdentifyRequest& o, IdentifyResult& res, nlohmann:
         }
     }
     // Replicas of the recordings (the simulated null) are cleaned exactly as the data were.
-    opt.reprepare = [pre, setup](const io::Run& rec, IdentifyRun& out, std::string& why) {
-        CleanRun c;
-        return preprocessRun(rec, pre, c, &why) && makeIdentifyRun(c, setup, out, &why);
-    };
+    opt.reprepare = recordingPreparer(pre, setup);
     opt.freeLaw = splitList(o.free);
     for (const std::string& n : opt.freeLaw) {
         FitParameter fp;

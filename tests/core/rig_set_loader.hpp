@@ -17,11 +17,8 @@
 namespace rigset {
 
 // Cleans a recording as loadRuns does (IdentifyOptions::reprepare for the simulated null).
-inline bool reprepare(const stickslip::io::Run& rec, stickslip::identify::IdentifyRun& out, std::string& why) {
-    stickslip::identify::CleanRun c;
-    return stickslip::identify::preprocessRun(rec, stickslip::identify::PreprocessSettings{}, c, &why) &&
-           stickslip::identify::makeIdentifyRun(c, stickslip::SetupKind::Dynamics, out, &why);
-}
+inline const auto reprepare =
+    stickslip::identify::recordingPreparer(stickslip::identify::PreprocessSettings{}, stickslip::SetupKind::Dynamics);
 
 // The first `nRuns` runs of the set in `dir`, each cut to its first `maxSeconds`; with
 // `withRecordings` each run keeps its (cut) recording, for the simulated null.

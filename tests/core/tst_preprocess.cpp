@@ -9,6 +9,7 @@
 #include "core/dsp/iir.hpp"
 #include "core/dsp/sampling.hpp"
 #include "core/dsp/savitzky_golay.hpp"
+#include "core/identify/identify.hpp"
 #include "core/identify/preprocess.hpp"
 
 using namespace stickslip::dsp;
@@ -220,6 +221,28 @@ private slots:
         QVERIFY(first > 0.85 * gmax);
         const double len = (c.end - c.begin) * c.dt_s;
         QVERIFY(len > 3 * c.period_s && len < 13.0);
+    }
+
+    // The simulated null's replicas are cleaned by recordingPreparer exactly as the pipeline
+    // cleans a measured run: preprocessRun, then makeIdentifyRun; its errors name the file.
+    void recordingPreparerIsPreprocessThenIdentifyRun() {
+        stickslip::io::Run raw;
+        stickslip::io::DatasetError err;
+        QVERIFY(loadRun(kShared + "/data/real/friction-damper/0.5Hz_36lb_1.5in.csv", {}, raw, err));
+        CleanRun c;
+        IdentifyRun direct, viaPreparer;
+        std::string why;
+        QVERIFY(preprocessRun(raw, PreprocessSettings{}, c, &why));
+        QVERIFY(makeIdentifyRun(c, stickslip::SetupKind::Prescribed, direct, &why));
+        QVERIFY2(recordingPreparer(PreprocessSettings{}, stickslip::SetupKind::Prescribed)(raw, viaPreparer, why), why.c_str());
+        QCOMPARE(viaPreparer.t_s, direct.t_s);
+        QCOMPARE(viaPreparer.force_N, direct.force_N);
+        QCOMPARE(viaPreparer.slip_m, direct.slip_m);
+        QCOMPARE(viaPreparer.frequency_Hz, direct.frequency_Hz);
+        // The damper has no slider signals: the dynamics set-up refuses it and names the file.
+        IdentifyRun dyn;
+        QVERIFY(!recordingPreparer(PreprocessSettings{}, stickslip::SetupKind::Dynamics)(raw, dyn, why));
+        QVERIFY2(why.find("0.5Hz_36lb_1.5in.csv") != std::string::npos && why.find("slider") != std::string::npos, why.c_str());
     }
 
     void syntheticRunLosesMainsKeepsSignal() {
