@@ -249,9 +249,6 @@ struct RunError {
     double rms_N = 0;          // RMS of the force residual [N]
     double nrmse = 0;          // in-sample (fit runs) or prediction (validation runs)
     double heldOutNrmse = 0;   // run held out in turn (leave-one-run-out), or = nrmse for validation runs
-    // The same held-out prediction's sum of squares over each forcing cycle (both channels; cycles
-    // with at least half their samples), for the per-cycle held-out diagnostic (CandidateScore).
-    std::vector<double> heldOutCycleSs;
 };
 
 struct ModelErrors {
@@ -280,12 +277,6 @@ struct CandidateScore {
     double heldOutT = kNoTest, heldOutP = kNoTest;  // paired t statistic, one-sided p
     std::vector<double> heldOutLogRatios;           // ln(MSE before / MSE after) of each held-out run
     bool heldOutExact = false;                      // heldOutP from the exact sign-flip test (else the t-test)
-    // Diagnostic, not a selection test: the same held-out predictions compared per forcing cycle,
-    // ln(SS before / SS after) of each cycle pooled over the held-out runs, one-sided t-test (many
-    // more units than runs; cycles of one run share that run's refit, so this asks whether the
-    // candidate predicts these held-out runs better, not whether it carries to new runs).
-    int heldOutCycles = 0;
-    double heldOutCycleMeanLogRatio = kNoTest, heldOutCycleT = kNoTest, heldOutCycleP = kNoTest;
     std::string sizeParam;             // size parameter tested ("1/kt_N_per_m" for a stiffness)
     double sizeValue = kNoTest, sizeNull = kNoTest, sizeStderr = kNoTest, sizeCritical = kNoTest;
     std::string sizeStderrKind;        // "jackknife over K leave-one-run-out fits" or "Jacobian x sqrt(tau_int)"

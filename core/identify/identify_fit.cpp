@@ -286,28 +286,6 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
     return out;
 }
 
-// The sum of squares of a run's residual vector r (its channels one after another, each the
-// run's samples) over each forcing cycle; cycles with fewer than half a cycle's samples are left
-// out. Empty when the run's drive frequency is unknown.
-std::vector<double> cycleSumsOfSquares(const Prepared& p, const std::vector<double>& r) {
-    const size_t n = p.size();
-    const double f = p.run->frequency_Hz;
-    if (n < 2 || !(f > 0) || r.size() < n || r.size() % n != 0) return {};
-    const double t0 = p.t.front(), dt = (p.t.back() - t0) / static_cast<double>(n - 1);
-    const size_t cycles = static_cast<size_t>((p.t.back() - t0) * f) + 1;
-    std::vector<double> ss(cycles, 0.0), count(cycles, 0.0);
-    for (size_t i = 0; i < n; ++i) {
-        const size_t c = std::min(cycles - 1, static_cast<size_t>((p.t[i] - t0) * f));
-        for (size_t ch = 0; ch < r.size() / n; ++ch) ss[c] += r[ch * n + i] * r[ch * n + i];
-        count[c] += 1;
-    }
-    const double full = 1.0 / (f * dt);
-    std::vector<double> out;
-    for (size_t c = 0; c < cycles; ++c)
-        if (count[c] >= 0.5 * full) out.push_back(ss[c]);
-    return out;
-}
-
 // Per-run errors of a fitted model: in-sample for the fit runs, prediction for validation
 // runs; held-out errors by leave-one-run-out (fit runs) when there are no validation runs.
 // `loo` (optional): the parameter values of each leave-one-run-out fit (for the jackknife).
@@ -335,7 +313,6 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
         e.rms_N = fn > 0 ? std::sqrt(fs / fn) : 0.0;
         if (isVal) {
             e.heldOutNrmse = e.nrmse;
-            e.heldOutCycleSs = cycleSumsOfSquares(cx.runs[i], r);
             valSS += ss; valN += n;
         } else {
             fitSS += ss; fitN += n;
@@ -359,7 +336,6 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
             double ss = 0, n = 0;
             if (!runResiduals(cx, cx.runs[h], mo, mh, r, ss, n, nullptr, nullptr, nullptr, spec.segments)) continue;
             me.runs[h].heldOutNrmse = n > 0 ? std::sqrt(ss / n) : 0.0;
-            me.runs[h].heldOutCycleSs = cycleSumsOfSquares(cx.runs[h], r);
             valSS += ss; valN += n;
         }
     }

@@ -201,9 +201,6 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
                    const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness = false,
                    FitStart from = FitStart::Far, FitOutput output = FitOutput::Full);
 // `loo`, if given, is replaced by the leave-one-run-out refits' parameter values (one per run).
-// A run's residual vector r (channels one after another) summed in squares over each forcing
-// cycle, cycles with at least half their samples (RunError::heldOutCycleSs).
-std::vector<double> cycleSumsOfSquares(const Prepared& p, const std::vector<double>& r);
 ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
                      const std::vector<size_t>& valIdx, long& fits,
                      std::vector<std::map<std::string, double>>* loo = nullptr);

@@ -107,10 +107,6 @@ nlohmann::json candidateJson(const CandidateScore& c) {
                                                                                  {"t", num(c.heldOutT)},
                                                                                  {"p_one_sided", num(c.heldOutP)},
                                                                                  {"test", c.heldOutExact ? "exact sign-flip" : "paired t"},
-                                                                                 {"per_cycle_diagnostic", {{"cycles", c.heldOutCycles},
-                                                                                                           {"mean_log_ss_ratio", num(c.heldOutCycleMeanLogRatio)},
-                                                                                                           {"t", num(c.heldOutCycleT)},
-                                                                                                           {"p_one_sided", num(c.heldOutCycleP)}}},
                                                                                  {"log_mse_ratio_per_run", [&] {
                                                                                       nlohmann::json a = nlohmann::json::array();
                                                                                       for (double v : c.heldOutLogRatios) a.push_back(num(v));

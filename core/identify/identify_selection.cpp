@@ -110,21 +110,6 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
         a.push_back(with.runs[i].heldOutNrmse * with.runs[i].heldOutNrmse);
     }
     const PairedTest pt = pairedLogRatioTest(b, a);
-    {
-        std::vector<double> cb, ca;
-        for (size_t i : units) {
-            if (i >= ref.runs.size() || i >= with.runs.size()) continue;
-            const std::vector<double>&rb = ref.runs[i].heldOutCycleSs, &ra = with.runs[i].heldOutCycleSs;
-            if (rb.size() != ra.size()) continue;
-            cb.insert(cb.end(), rb.begin(), rb.end());
-            ca.insert(ca.end(), ra.begin(), ra.end());
-        }
-        const PairedTest ct = pairedLogRatioTest(cb, ca);
-        sc.heldOutCycles = ct.units;
-        sc.heldOutCycleMeanLogRatio = ct.meanLogRatio;
-        sc.heldOutCycleT = ct.t;
-        sc.heldOutCycleP = ct.pValue;
-    }
     sc.heldOutLogRatios.clear();
     for (size_t k = 0; k < b.size(); ++k)
         sc.heldOutLogRatios.push_back(b[k] > 0 && a[k] > 0 ? std::log(b[k] / a[k]) : kNaN);

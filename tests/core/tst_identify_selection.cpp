@@ -78,26 +78,6 @@ Prepared prepared(const IdentifyRun& r) {
 class TestIdentifySelection : public QObject {
     Q_OBJECT
 private slots:
-    // The per-cycle sums of squares of a held-out residual: a 3 Hz run of 2 s at 1 kHz has six
-    // whole cycles (333 samples each); both channels of a dynamics run count in a cycle.
-    void cycleSumsOfSquaresSplitsByForcingCycle() {
-        IdentifyRun r = syntheticRun(SetupKind::Dynamics);
-        r.frequency_Hz = 3.0;
-        const Prepared p = prepared(r);
-        const size_t n = p.size();
-        std::vector<double> res(2 * n, 0.0);
-        for (size_t i = 0; i < n; ++i) {
-            res[i] = 1.0;                              // law channel: 1 per sample
-            res[n + i] = p.t[i] < 1.0 / 3.0 ? 2.0 : 0.0;  // rig channel: only in the first cycle
-        }
-        const std::vector<double> ss = cycleSumsOfSquares(p, res);
-        QCOMPARE(ss.size(), size_t(6));
-        QVERIFY(std::abs(ss[0] - 334.0 * 5.0) < 1e-9);
-        for (size_t c = 1; c < ss.size(); ++c) QVERIFY2(ss[c] >= 333.0 && ss[c] <= 334.0, QByteArray::number(ss[c]));
-        r.frequency_Hz = 0.0;  // unknown drive frequency: no cycles
-        QVERIFY(cycleSumsOfSquares(prepared(r), res).empty());
-    }
-
     // D16 (session 6): every leave-one-run-out refit of a candidate failed, its held-out error
     // was NaN, and the NaN slipped past the held-out comparison: the candidate was added.
     void noHeldOutErrorIsNoEvidence() {
