@@ -186,8 +186,6 @@ void prepareStepSlip(const IdentifyRun& r, size_t dec, int substeps, Prepared& p
     }
 }
 
-// Checks the runs, sets their accumulated slip, chooses the decimation and prepares every run
-// (decimated signals, weights, prediction filter, segments). False with `why` on bad input.
 // The dynamics law channel's masks (Prepared::slides, Prepared::compared): the filtered prediction
 // is the measurement outside `slides`, so within the filter's memory of a mask edge it mixes the
 // two; there it is not the model's, and `compared` leaves it out (IdentifyOptions::maskEdgeGuard).
@@ -203,6 +201,8 @@ void prepareLawMasks(double vStick, Prepared& p) {
             for (long j = std::max(0L, i - g); j <= std::min(nn - 1, i + g); ++j) p.compared[static_cast<size_t>(j)] = 0;
 }
 
+// Checks the runs, sets their accumulated slip, chooses the decimation and prepares every run
+// (decimated signals, weights, prediction filter, segments). False with `why` on bad input.
 bool prepareContext(std::vector<IdentifyRun>& runs, const IdentifyOptions& opt, Context& cx, int& decimation,
                     std::string& why) {
     cx.opt = &opt;

@@ -78,6 +78,21 @@ Prepared prepared(const IdentifyRun& r) {
 class TestIdentifySelection : public QObject {
     Q_OBJECT
 private slots:
+    // The law channel's masks: slides where |V| >= vStick; compared = slides less every sample
+    // within edgeGuard of one that does not slide (IdentifyOptions::maskEdgeGuard).
+    void lawMasksErodeTheSlidingSetByTheEdgeGuard() {
+        Prepared p;
+        p.t = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+        p.V = {0, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0, 0.1, 0.1};
+        prepareLawMasks(0.005, p);
+        QCOMPARE(p.slides, (std::vector<char>{0, 1, 1, 1, 1, 1, 1, 0, 1, 1}));
+        QCOMPARE(p.compared, p.slides);  // no guard: every sliding sample
+        p.edgeGuard = 2;
+        prepareLawMasks(0.005, p);
+        QCOMPARE(p.slides, (std::vector<char>{0, 1, 1, 1, 1, 1, 1, 0, 1, 1}));
+        QCOMPARE(p.compared, (std::vector<char>{0, 0, 0, 1, 1, 0, 0, 0, 0, 0}));
+    }
+
     // D16 (session 6): every leave-one-run-out refit of a candidate failed, its held-out error
     // was NaN, and the NaN slipped past the held-out comparison: the candidate was added.
     void noHeldOutErrorIsNoEvidence() {
