@@ -110,6 +110,11 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
 void addIdentifyCommand(CLI::App& root, int& exitCode) {
     auto o = std::make_shared<IdentifyCliOptions>();
     auto* cmd = root.add_subcommand("identify", "find effects the model lacks: residual -> effect -> refit, errors before/after");
+    // A flag with a negation (--on,!--off): CLI11 shows only the negation's "{false}", so the help
+    // names the default side itself.
+    auto twoWayFlag = [cmd](const std::string& on, const std::string& off, bool& value, const std::string& doc) {
+        cmd->add_flag(on + ",!" + off, value, doc)->default_str(value ? on : off);
+    };
     addMeasuredInputOptions(cmd, o->req.in, "measured runs (CSV), in recording order",
                             "held-out runs (CSV); without it runs are held out in turn");
     addCleaningOptions(cmd, o->req.cleaning);
@@ -134,14 +139,14 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--simulated-null-bias-steps", o->req.options.simulatedNullBiasSteps,
                     "simulated null: fixed-point steps that move the replicas' model until their fits land where the "
                     "data's fit did (indirect inference), in [0, 20]")->capture_default_str();
-    cmd->add_flag("--mask-edge-guard,!--no-mask-edge-guard", o->req.options.maskEdgeGuard,
-                  "dynamics: compare the law channel only on sliding samples farther than the prediction filter's "
-                  "memory (its DC group delay) from a stuck one, where the filtered prediction is not a blend of model "
-                  "and measurement (off by default)")->default_str(o->req.options.maskEdgeGuard ? "--mask-edge-guard" : "--no-mask-edge-guard");
-    cmd->add_flag("--null-numerics,!--no-null-numerics", o->req.options.nullNumerics,
-                  "the noise replicas also carry the residual's numerical part (the residual minus that of the same model "
-                  "predicted from every recorded sample, or with 4x the law steps, refitted to the same samples), so an "
-                  "effect that only absorbs the prediction's discretisation error is not added (default)")->default_str(o->req.options.nullNumerics ? "--null-numerics" : "--no-null-numerics");
+    twoWayFlag("--mask-edge-guard", "--no-mask-edge-guard", o->req.options.maskEdgeGuard,
+               "dynamics: compare the law channel only on sliding samples farther than the prediction filter's "
+               "memory (its DC group delay) from a stuck one, where the filtered prediction is not a blend of model "
+               "and measurement (off by default)");
+    twoWayFlag("--null-numerics", "--no-null-numerics", o->req.options.nullNumerics,
+               "the noise replicas also carry the residual's numerical part (the residual minus that of the same model "
+               "predicted from every recorded sample, or with 4x the law steps, refitted to the same samples), so an "
+               "effect that only absorbs the prediction's discretisation error is not added (default)");
     cmd->add_option("--held-out-alpha", o->req.options.heldOutAlpha,
                     "level of the one-sided paired test over held-out runs an effect must pass, in (0, 1)")->capture_default_str();
     cmd->add_option("--identifiability-alpha", o->req.options.identifiabilityAlpha,
@@ -152,23 +157,23 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--decimate", o->req.options.decimate, "use every n-th sample")->capture_default_str();
     cmd->add_option("--substeps", o->req.options.substeps, "prescribed: law steps per used sample")->capture_default_str();
     cmd->add_option("--multistarts", o->req.options.multistarts, "starting points per fit")->capture_default_str();
-    cmd->add_flag("--exact-state-step,!--backward-euler-state-step", o->req.options.exactStateStep,
-                  "the law's state alpha advanced exactly for a slip rate constant over each step (default), or by the "
-                  "paper's backward Euler, whose relaxation is far off once a step slips more than D_c")->default_str(o->req.options.exactStateStep ? "--exact-state-step" : "--backward-euler-state-step");
-    cmd->add_flag("--recorded-step-slip,!--linear-step-slip", o->req.options.recordedStepSlip,
-                  "decimated prescribed runs: the law's slip between used samples read off the recorded slip (default), or the line "
-                  "between used samples, which cuts the corners of every stick")->default_str(o->req.options.recordedStepSlip ? "--recorded-step-slip" : "--linear-step-slip");
-    cmd->add_flag("--forward-jacobian,!--central-jacobian", o->req.options.forwardJacobian,
-                  "the solver's Jacobian by forward differences (default: p residual runs per Jacobian) or by central "
-                  "differences (2p, slower); standard errors and leave-one-run-out refits use central differences either way")->default_str(o->req.options.forwardJacobian ? "--forward-jacobian" : "--central-jacobian");
-    cmd->add_flag("--curve-coordinates,!--law-coordinates", o->req.options.curveCoordinates,
-                  "fits warm-started from a fitted model move in the steady-state curve's coordinates C1/vc^2 and "
-                  "eta - C1/vc (default, both set-ups, as fit --setup dynamics does) or in C1, eta themselves")->default_str(o->req.options.curveCoordinates ? "--curve-coordinates" : "--law-coordinates");
-    cmd->add_flag("--held-out-restart,!--no-held-out-restart", o->req.options.heldOutRestart,
-                  "refit the baseline, and a candidate before it is judged, from a leave-one-run-out refit's point, "
-                  "and the current model from a round's candidate's point with its effect removed, when that point fits "
-                  "all runs better than the fit by more than --restart-margin in BIC (the fit stopped in a worse minimum); "
-                  "on by default")->default_str(o->req.options.heldOutRestart ? "--held-out-restart" : "--no-held-out-restart");
+    twoWayFlag("--exact-state-step", "--backward-euler-state-step", o->req.options.exactStateStep,
+               "the law's state alpha advanced exactly for a slip rate constant over each step (default), or by the "
+               "paper's backward Euler, whose relaxation is far off once a step slips more than D_c");
+    twoWayFlag("--recorded-step-slip", "--linear-step-slip", o->req.options.recordedStepSlip,
+               "decimated prescribed runs: the law's slip between used samples read off the recorded slip (default), or the line "
+               "between used samples, which cuts the corners of every stick");
+    twoWayFlag("--forward-jacobian", "--central-jacobian", o->req.options.forwardJacobian,
+               "the solver's Jacobian by forward differences (default: p residual runs per Jacobian) or by central "
+               "differences (2p, slower); standard errors and leave-one-run-out refits use central differences either way");
+    twoWayFlag("--curve-coordinates", "--law-coordinates", o->req.options.curveCoordinates,
+               "fits warm-started from a fitted model move in the steady-state curve's coordinates C1/vc^2 and "
+               "eta - C1/vc (default, both set-ups, as fit --setup dynamics does) or in C1, eta themselves");
+    twoWayFlag("--held-out-restart", "--no-held-out-restart", o->req.options.heldOutRestart,
+               "refit the baseline, and a candidate before it is judged, from a leave-one-run-out refit's point, "
+               "and the current model from a round's candidate's point with its effect removed, when that point fits "
+               "all runs better than the fit by more than --restart-margin in BIC (the fit stopped in a worse minimum); "
+               "on by default");
     cmd->add_option("--dynamics-residual", o->req.dynamicsResidual,
                     "dynamics set-up: equation-error (default: the law run along the measured slip, every effect applicable, "
                     "+ the rig's equation of motion), auto (contact effects scored on re-initialised simulated segments; "
