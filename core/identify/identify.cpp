@@ -569,6 +569,7 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         }
         if (!runRound(L, round, cands)) break;
     }
+    if (!L.res.effectsAdded.empty() && !L.cancelled()) dropVanishedEffects(L);
     // The self-test around the final baseline (round 1 may have refitted it, restartFromCandidates).
     if (opt.selfTest.replicas > 0 && !L.cancelled()) {
         res.selfTest = runSelfTest(cx, L.baseSpec, L.baseFit, L.fitIdx, cands,

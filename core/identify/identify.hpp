@@ -117,6 +117,12 @@ struct IdentifyOptions {
     //  With fewer than 3 held-out runs (≤ 1 degree of freedom, no power) (2) requires every
     //  held-out run to improve and (3) uses the Jacobian stderr × sqrt(τ_int): weaker guards.
     //  Both α are the conventional 5 % and not tuned to data.
+    //  (5) backward check, once the rounds end (identify_backward.cpp): an added effect whose size
+    //      fails (3) on the final fit (Jacobian stderr × sqrt(τ_int)) and whose ΔBIC against the
+    //      final model refitted without it is not below −bicMargin is dropped. A later round's
+    //      restart or effect can take over its part (N005 of docs/identify-results.md, session
+    //      43: a lag added to a baseline stuck at SS 437 ended at τ = 1e-6 s once round 2 had
+    //      refitted the model to SS 106).
     // (1a) ΔBIC must be below −this. 0: the criterion itself decides (the lower BIC wins), with no
     // constant of its own. Until session 38 it was 10 ("very strong" evidence, Kass & Raftery
     // 1995), the one gate not calibrated on the data, kept because the noise null (1b) did not

@@ -261,6 +261,12 @@ constexpr int kMinUnitsForTests = 3;  // runs needed for the paired test and the
 bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fit, const ModelErrors& ref,
                      const ModelErrors& with, const std::vector<std::map<std::string, double>>& loo,
                      const std::vector<size_t>& units, double tauInt);
+// Test (3) alone: the effect's size parameter in `fit` differs from the value at which the effect
+// vanishes by more than t_{1−α/2} standard errors (the jackknife over `loo` when it has at least
+// kMinUnitsForTests fits and is the larger, else the Jacobian's × sqrt(τ_int)). Fills sc's size
+// figures; false with sc.reason set when it does not.
+bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit,
+                    const std::vector<std::map<std::string, double>>& loo, double tauInt);
 
 // The recovery self-test (self_test.hpp) around the fitted baseline `base` of `spec`; neffCap as
 // the loop's BIC uses it.

@@ -73,6 +73,10 @@ inline std::vector<ParamEstimate> effectParams(const FitOutcome& f, const std::s
 // Makes L.cur the baseline: its held-out errors (with the held-out restart guard), diagnostics
 // and the "before" figures. `note` is kept as the baseline's note when the guard finds nothing.
 void adoptBaseline(Loop& L, const std::string& note);
+// Makes the refitted L.cur (the baseline and the effects added so far, at least one) the current
+// model again: its held-out errors (with the held-out restart guard), diagnostics and "after", the
+// added effects' parameters, and the last added effect's held-out error after and note.
+void adoptCurrent(Loop& L, const std::string& note);
 // IdentifyOptions::heldOutRestart from the leave-one-run-out refits `loo` of `fit` (details in
 // identify_restart.cpp). True when `fit` changed; `note` says what was found either way.
 bool restartFromHeldOut(Loop& L, const Spec& spec, FitOutcome& fit, const std::vector<std::map<std::string, double>>& loo,
@@ -85,5 +89,11 @@ std::string checkBaselineBounds(Loop& L);
 // The same guard from the candidates of a round (details in identify_restart.cpp). True when the
 // current model changed (the round must be fitted again).
 bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried);
+// The backward check of the final model (identify_backward.cpp): an added effect whose size has
+// vanished in the final fit (it fails the size test there) and whose removal, with the model
+// refitted without it, does not raise the BIC by more than the margin is dropped, and the model
+// without it is adopted (the baseline's "before" too when none is left). Returns how many were
+// dropped.
+int dropVanishedEffects(Loop& L);
 
 }  // namespace stickslip::identify::detail

@@ -154,11 +154,6 @@ void adoptBaseline(Loop& L, const std::string& note) {
     L.baseFit = L.cur;
 }
 
-namespace {
-
-// Makes the refitted L.cur (the baseline and the effects added so far) the current model again:
-// its held-out errors (with the held-out restart guard), diagnostics and "after", the added
-// effects' parameters, and the last added effect's held-out error after and note.
 void adoptCurrent(Loop& L, const std::string& note) {
     std::vector<std::map<std::string, double>> loo;
     L.curErrors = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits, &loo);
@@ -174,8 +169,6 @@ void adoptCurrent(Loop& L, const std::string& note) {
     last.note = (last.note.empty() ? "" : last.note + "; ") + note;
     if (!heldOutNote.empty()) last.note += "; " + heldOutNote;
 }
-
-}  // namespace
 
 // The same guard from the other side (IdentifyOptions::heldOutRestart): every candidate
 // contains the current model (the baseline and the effects added so far; its own effect absent),

@@ -145,6 +145,8 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
     return true;
 }
 
+}  // namespace
+
 // Test (3): the size parameter is identified away from the value at which the effect vanishes.
 bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit,
                     const std::vector<std::map<std::string, double>>& loo, double tauInt) {
@@ -199,8 +201,6 @@ bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit
     }
     return true;
 }
-
-}  // namespace
 
 // The held-out and identifiability tests of the selection (tests 2 and 3 of the selection rule,
 // IdentifyOptions in identify.hpp).
