@@ -6,6 +6,7 @@
 // by the loop's own criterion.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -32,10 +33,15 @@ bool firstVanished(const Loop& L, const std::vector<std::string>& kept, Candidat
     return false;
 }
 
+std::string g4(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.4g", v);
+    return b;
+}
+
 std::string vanishedText(const CandidateScore& sc) {
-    return "its size " + sc.sizeParam + " = " + std::to_string(sc.sizeValue) + " in the final fit is not identified (|value - " +
-           std::to_string(sc.sizeNull) + "| <= " + std::to_string(sc.sizeCritical) + " x " + std::to_string(sc.sizeStderr) +
-           ", " + sc.sizeStderrKind + ")";
+    return "its size " + sc.sizeParam + " = " + g4(sc.sizeValue) + " in the final fit is not identified (|value - " +
+           g4(sc.sizeNull) + "| <= " + g4(sc.sizeCritical) + " x " + g4(sc.sizeStderr) + ", " + sc.sizeStderrKind + ")";
 }
 
 }  // namespace
@@ -59,7 +65,7 @@ int dropVanishedEffects(Loop& L) {
             continue;
         }
         const std::string why = vanishedText(sc) + ", and the model without it, refitted, is as good (dBIC of keeping it " +
-                                std::to_string(dBic) + ", not below -" + std::to_string(L.opt.bicMargin) + ")";
+                                g4(dBic) + ", not below -" + g4(L.opt.bicMargin) + ")";
         CandidateScore& s = L.scores[e];
         s.accepted = false;
         s.reason = "added in round " + std::to_string(s.round) + ", dropped by the backward check of the final model: " + why;
