@@ -73,11 +73,16 @@ int dropVanishedEffects(Loop& L) {
         added.erase(std::remove_if(added.begin(), added.end(), [&](const AddedEffect& a) { return a.name == e; }), added.end());
         L.spec = std::move(without);
         L.cur = g;
-        const std::string note = "backward check: " + e + " dropped (" + why + ")";
-        if (L.spec.effects.empty())
+        std::string note = "backward check: " + e + " dropped (" + why + ")";
+        if (L.spec.effects.empty()) {
+            // The refit is a better minimum of the baseline than the one the loop started from:
+            // it is "before" from here on, and the note says where the first fit ended.
+            note += "; the baseline is that refit (sum of squares " + g4(L.cur.ss) + "; the first baseline fit ended at " +
+                    g4(L.baseFit.ss) + ")";
             adoptBaseline(L, L.res.baselineNote.empty() ? note : L.res.baselineNote + "; " + note);
-        else
+        } else {
             adoptCurrent(L, note);
+        }
         kept.clear();  // the refit moved the others: each is checked again
         ++dropped;
     }

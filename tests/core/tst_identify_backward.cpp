@@ -70,6 +70,7 @@ private slots:
         QVERIFY2(fx.make(synth::makeRuns(synth::trueModel(), 2.0, 0.02, 1), "frictional_lag", 1e-6, why), why.c_str());
         const double tau = fx.L->cur.values.at("frictional_lag.tau_s");
         qInfo("lag fitted on runs without one: tau = %.3g s", tau);
+        const double firstBaselineSS = fx.L->baseFit.ss;
         QCOMPARE(dropVanishedEffects(*fx.L), 1);
         QVERIFY(fx.L->spec.effects.empty());
         QVERIFY(fx.res.effectsAdded.empty());
@@ -79,7 +80,9 @@ private slots:
         QVERIFY2(s.reason.find("dropped by the backward check") != std::string::npos, s.reason.c_str());
         QVERIFY2(fx.res.baselineNote.find("backward check: frictional_lag dropped") != std::string::npos,
                  fx.res.baselineNote.c_str());
+        QVERIFY2(fx.res.baselineNote.find("the baseline is that refit") != std::string::npos, fx.res.baselineNote.c_str());
         QCOMPARE(fx.L->baseFit.ss, fx.L->cur.ss);
+        QVERIFY(fx.L->cur.ss <= firstBaselineSS * (1.0 + 1e-9));
     }
     // A lag of 10 ms in the runs: its size is identified on the final fit and it is kept, with no
     // refit.
