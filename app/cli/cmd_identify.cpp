@@ -89,9 +89,10 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
               << " s, " << res.fits << " fits\n";
     for (const BoundVerdict& b : res.baselineBounds)
         std::cout << "baseline " << b.name << " ended on its " << b.side << " bound " << b.bound << ": "
-                  << (b.solverFailure ? "a solver failure" : "the data's answer") << " (a second start from " << b.retryStart
-                  << " ended at " << b.retryValue << ", BIC lower by " << b.bicGain
-                  << (b.refitted ? "; the baseline refitted there)\n" : ")\n");
+                  << b.verdict() << " (a second start from " << b.retryStart << " ended at " << b.retryValue
+                  << ", BIC lower by " << b.bicGain << (b.refitted ? "; the baseline refitted there" : "")
+                  << (b.leftLater() ? "; the baseline adopted later has it at " + std::to_string(b.leftLaterTo) : std::string())
+                  << ")\n";
     for (const auto& e : res.effectsAdded)
         for (const std::string& c : e.confoundedWith)
             std::cout << "confounded: " << c << " trades off with " << e.name << " (not added; " << e.name

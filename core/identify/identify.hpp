@@ -23,8 +23,10 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <map>
 #include <memory>
@@ -349,6 +351,17 @@ struct BoundVerdict {
     double bicGain = 0;         // BIC of the first fit minus the second's
     bool refitted = false;      // bicGain beyond the margin: the baseline is the second start's
     bool solverFailure = false; // refitted, and the second start left the bound
+    // A later refit adopted as the baseline (a restart from a candidate's point, the backward
+    // check) is off this bound: the bound was a worse minimum after all, whatever the second start
+    // found. NaN while the baseline is still on it.
+    double leftLaterTo = std::numeric_limits<double>::quiet_NaN();
+    bool leftLater() const { return std::isfinite(leftLaterTo); }
+    // The verdict as the reports word it.
+    const char* verdict() const {
+        return solverFailure ? "solver failure"
+               : leftLater() ? "solver failure (a later refit of the baseline left the bound)"
+                             : "the data's answer";
+    }
 };
 
 struct IdentifyResult {

@@ -71,7 +71,8 @@ nlohmann::json baselineJson(const IdentifyResult& r) {
                                 {"second_start_ended_at", num(b.retryValue)},
                                 {"bic_gain_of_second_start", num(b.bicGain)},
                                 {"refitted_from_second_start", b.refitted},
-                                {"verdict", b.solverFailure ? "solver failure" : "the data's answer"}});
+                                {"left_later_to", num(b.leftLaterTo)},
+                                {"verdict", b.verdict()}});
     return j;
 }
 

@@ -130,6 +130,22 @@ std::string checkBaselineBounds(Loop& L) {
     }
 }
 
+namespace {
+
+// The bound verdicts of the first baseline fit whose parameter the adopted baseline L.cur is no
+// longer on (BoundVerdict::leftLaterTo).
+void markBoundsLeft(Loop& L) {
+    if (L.res.baselineBounds.empty()) return;
+    for (const FitParameter& p : parameters(L.cx, L.spec, L.cur.values)) {
+        const auto it = L.cur.values.find(p.name);
+        if (it == L.cur.values.end()) continue;
+        for (BoundVerdict& b : L.res.baselineBounds)
+            if (b.name == p.name && boundSide(p, it->second) != (b.side == "upper" ? 1 : -1)) b.leftLaterTo = it->second;
+    }
+}
+
+}  // namespace
+
 // Makes L.cur the baseline: its held-out errors (with the held-out restart guard), diagnostics
 // and the "before" figures. `note` is kept as the baseline's note when the guard finds nothing.
 void adoptBaseline(Loop& L, const std::string& note) {
@@ -144,6 +160,7 @@ void adoptBaseline(Loop& L, const std::string& note) {
     }
     if (!heldOutNote.empty()) L.res.baselineNote += (L.res.baselineNote.empty() ? "" : "; ") + heldOutNote;
     L.res.baseline = L.cur.estimates;
+    markBoundsLeft(L);
     L.predBefore.clear();
     L.res.diagnosticsBefore = diagnoseModel(L.cx, L.spec, L.cur, &L.predBefore);
     L.curDiag = L.res.diagnosticsBefore;

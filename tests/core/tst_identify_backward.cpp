@@ -71,6 +71,14 @@ private slots:
         const double tau = fx.L->cur.values.at("frictional_lag.tau_s");
         qInfo("lag fitted on runs without one: tau = %.3g s", tau);
         const double firstBaselineSS = fx.L->baseFit.ss;
+        // A verdict of the first baseline fit that η ended on its lower bound: the refitted
+        // baseline has η off it, so the report must no longer call that bound the data's answer.
+        BoundVerdict eta;
+        eta.name = "eta";
+        eta.side = "lower";
+        eta.bound = 1e-4;
+        fx.res.baselineBounds.push_back(eta);
+        QVERIFY(!fx.res.baselineBounds.back().leftLater());
         QCOMPARE(dropVanishedEffects(*fx.L), 1);
         QVERIFY(fx.L->spec.effects.empty());
         QVERIFY(fx.res.effectsAdded.empty());
@@ -82,6 +90,11 @@ private slots:
                  fx.res.baselineNote.c_str());
         QVERIFY2(fx.res.baselineNote.find("the baseline is that refit") != std::string::npos, fx.res.baselineNote.c_str());
         QCOMPARE(fx.L->baseFit.ss, fx.L->cur.ss);
+        const BoundVerdict& b = fx.res.baselineBounds.back();
+        QVERIFY(b.leftLater());
+        QCOMPARE(b.leftLaterTo, fx.L->cur.values.at("eta"));
+        QCOMPARE(std::string(b.verdict()), std::string("solver failure (a later refit of the baseline left the bound)"));
+        QCOMPARE(toJson(fx.res)["baseline"]["at_bound"][0]["left_later_to"].get<double>(), b.leftLaterTo);
         QVERIFY(fx.L->cur.ss <= firstBaselineSS * (1.0 + 1e-9));
     }
     // A lag of 10 ms in the runs: its size is identified on the final fit and it is kept, with no
