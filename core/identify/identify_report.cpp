@@ -166,7 +166,9 @@ nlohmann::json selectionJson(const IdentifyResult& r) {
                                     "paired t-test, p < alpha) "
                                     "AND its size parameter must differ from its vanishing value by more than t_(K-1,1-alpha/2) "
                                     "standard errors: the jackknife over the leave-one-run-out fits or, where larger, the "
-                                    "Jacobian's x sqrt(tau_int)"},
+                                    "Jacobian's x sqrt(tau_int); once the rounds end, an added effect whose size fails that "
+                                    "test on the final fit (Jacobian x sqrt(tau_int)) and whose BIC against the final model "
+                                    "refitted without it is not lower by more than the margin is dropped (backward check)"},
                       {"null_alpha", num(r.nullAlpha)}, {"null_replicas", r.nullReplicas}, {"bic_margin", num(r.bicMargin)}, {"null_numerics", r.nullNumerics}, {"restart_margin", num(r.restartMargin)},
                       {"held_out_alpha", num(r.heldOutAlpha)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
                       {"tau_int_samples", num(r.tauInt)},

@@ -191,7 +191,9 @@ void writeCandidates(std::ostream& o, const IdentifyResult& r) {
          "consistently over the held-out runs (one-sided p &lt; " << fmt(r.heldOutAlpha, "%g")
       << " on the runs' log MSE ratios: the exact sign-flip test when 2<sup>&minus;K</sup> &lt; " << fmt(r.heldOutAlpha, "%g")
       << " for K held-out runs, else the paired t-test) and the size parameter is more than t<sub>K&minus;1</sub> standard errors (the jackknife over the leave-one-run-out fits or, where larger, the Jacobian's &times; &radic;&tau;<sub>int</sub>) from where the effect vanishes "
-         "(level " << fmt(r.identifiabilityAlpha, "%g") << ").</p><table><tr><th>effect</th><th>round</th><th>&Delta;BIC</th>"
+         "(level " << fmt(r.identifiabilityAlpha, "%g") << "). Once the rounds end, an added effect whose size fails that test on the final fit "
+         "(the Jacobian's standard error &times; &radic;&tau;<sub>int</sub>) and whose BIC against the final model refitted without it is not lower "
+         "by more than the margin is dropped again (the backward check; its row says so).</p><table><tr><th>effect</th><th>round</th><th>&Delta;BIC</th>"
          "<th>fit NRMSE</th><th>gain / noise quantile</th><th>held-out NRMSE</th><th>held-out p</th><th>|size &minus; vanishing value| / s.e.</th><th>t crit.</th>"
          "<th>verdict</th></tr>\n";
     for (const CandidateScore& c : r.candidates) {
