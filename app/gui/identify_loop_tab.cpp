@@ -189,23 +189,7 @@ void IdentifyLoopTab::showBeforeAfter(const IdentifyResult& r, const QStringList
     // A baseline parameter on its bound, what a second start made of it, and whether a baseline
     // adopted later (a restart, the backward check) left it.
     QStringList bounds;
-    for (const BoundVerdict& b : r.baselineBounds) {
-        const QString text =
-            b.leftLater()     ? tr("%1 ended on its %2 bound %3 in the first baseline fit (a second start from %4 ended at "
-                                   "%5); a later refit of the baseline left it, to %6: a worse minimum, not the data's answer.")
-            : b.solverFailure ? tr("%1 had stopped on its %2 bound %3: a second start from %4 left it (%5) and ended "
-                                   "lower; refitted there (a solver failure).")
-            : b.refitted      ? tr("%1 ended on its %2 bound %3: a second start from %4 ended there too (%5): the "
-                                   "data's answer; that start was lower elsewhere, and the baseline was refitted there.")
-                              : tr("%1 ended on its %2 bound %3: a second start from %4 ended at %5, no lower: the "
-                                   "data's answer.");
-        QString line = text.arg(QString::fromStdString(b.name), QString::fromStdString(b.side))
-                           .arg(b.bound, 0, 'g', 4)
-                           .arg(b.retryStart, 0, 'g', 4)
-                           .arg(b.retryValue, 0, 'g', 4);
-        if (b.leftLater()) line = line.arg(b.leftLaterTo, 0, 'g', 4);
-        bounds << line;
-    }
+    for (const BoundVerdict& b : r.baselineBounds) bounds << boundSentence(b);
     baselineBounds_->setText(bounds.join(" "));
     baselineBounds_->setVisible(!bounds.isEmpty());
     setCell(beforeAfter_, 0, 1, formatNrmse(r.before.fitNrmse));

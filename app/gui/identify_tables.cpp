@@ -2,6 +2,7 @@
 
 #include "core/friction/friction_law.hpp"
 
+#include <QCoreApplication>
 #include <QHeaderView>
 #include <QScrollArea>
 #include <QTableWidget>
@@ -19,6 +20,26 @@ QString formatEstimate(double value, double se) {
 }
 
 QString formatNrmse(double v) { return std::isfinite(v) ? QString::number(v, 'f', 4) : QStringLiteral("–"); }
+
+QString boundSentence(const identify::BoundVerdict& b) {
+    const char* text =
+        b.solverFailure ? "%1 had stopped on its %2 bound %3: a second start from %4 left it (%5) and ended lower; "
+                          "refitted there (a solver failure)."
+        : b.leftLater() ? "%1 ended on its %2 bound %3 in the first baseline fit (a second start from %4 ended at %5); a "
+                          "later refit of the baseline left it, to %6: a worse minimum, not the data's answer."
+        : b.refitted    ? "%1 ended on its %2 bound %3: a second start from %4 ended there too (%5): the data's answer; "
+                          "that start was lower elsewhere, and the baseline was refitted there."
+                        : "%1 ended on its %2 bound %3: a second start from %4 ended at %5, no lower: the data's answer.";
+    QString line = QCoreApplication::translate("IdentifyLoopTab", text)
+                       .arg(QString::fromStdString(b.name), QString::fromStdString(b.side))
+                       .arg(b.bound, 0, 'g', 4)
+                       .arg(b.retryStart, 0, 'g', 4)
+                       .arg(b.retryValue, 0, 'g', 4);
+    if (!b.leftLater()) return line;
+    if (!b.solverFailure) return line.arg(b.leftLaterTo, 0, 'g', 4);
+    return line + QCoreApplication::translate("IdentifyLoopTab", " The baseline adopted later has it at %1.")
+                      .arg(b.leftLaterTo, 0, 'g', 4);
+}
 
 QString paramTitle(const std::string& n) {
     static const std::map<std::string, QString> t = {

@@ -20,6 +20,11 @@ QString formatEstimate(double value, double stderr_);
 // A dimensionless error as shown in the tables ("0.1608"; "–" when not finite).
 QString formatNrmse(double v);
 
+// The sentence the Identify tab shows for a baseline parameter that ended on a bound: where the
+// second start ended it, the verdict (the data's answer, or a solver failure refitted), and
+// where a baseline adopted later (a restart, the backward check) has it, if it left the bound.
+QString boundSentence(const identify::BoundVerdict& b);
+
 // "η [s/m]" for "eta"; the name itself when unknown.
 QString paramTitle(const std::string& n);
 QString lawName(LawKind law);

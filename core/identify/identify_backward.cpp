@@ -6,10 +6,10 @@
 // by the loop's own criterion.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "fit_internal.hpp"
 #include "identify_loop.hpp"
 
 namespace stickslip::identify::detail {
@@ -33,15 +33,9 @@ bool firstVanished(const Loop& L, const std::vector<std::string>& kept, Candidat
     return false;
 }
 
-std::string g4(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.4g", v);
-    return b;
-}
-
 std::string vanishedText(const CandidateScore& sc) {
-    return "its size " + sc.sizeParam + " = " + g4(sc.sizeValue) + " in the final fit is not identified (|value - " +
-           g4(sc.sizeNull) + "| <= " + g4(sc.sizeCritical) + " x " + g4(sc.sizeStderr) + ", " + sc.sizeStderrKind + ")";
+    return "its size " + sc.sizeParam + " = " + fmt(sc.sizeValue) + " in the final fit is not identified (|value - " +
+           fmt(sc.sizeNull) + "| <= " + fmt(sc.sizeCritical) + " x " + fmt(sc.sizeStderr) + ", " + sc.sizeStderrKind + ")";
 }
 
 }  // namespace
@@ -65,7 +59,7 @@ int dropVanishedEffects(Loop& L) {
             continue;
         }
         const std::string why = vanishedText(sc) + ", and the model without it, refitted, is as good (dBIC of keeping it " +
-                                g4(dBic) + ", not below -" + g4(L.opt.bicMargin) + ")";
+                                fmt(dBic) + ", not below -" + fmt(L.opt.bicMargin) + ")";
         CandidateScore& s = L.scores[e];
         s.accepted = false;
         s.reason = "added in round " + std::to_string(s.round) + ", dropped by the backward check of the final model: " + why;
@@ -77,8 +71,8 @@ int dropVanishedEffects(Loop& L) {
         if (L.spec.effects.empty()) {
             // The refit is a better minimum of the baseline than the one the loop started from:
             // it is "before" from here on, and the note says where the first fit ended.
-            note += "; the baseline is that refit (sum of squares " + g4(L.cur.ss) + "; the first baseline fit ended at " +
-                    g4(L.baseFit.ss) + ")";
+            note += "; the baseline is that refit (sum of squares " + fmt(L.cur.ss) + "; the first baseline fit ended at " +
+                    fmt(L.baseFit.ss) + ")";
             adoptBaseline(L, L.res.baselineNote.empty() ? note : L.res.baselineNote + "; " + note);
         } else {
             adoptCurrent(L, note);

@@ -135,6 +135,37 @@ private slots:
         QCOMPARE(formatNrmse(0.123456), QStringLiteral("0.1235"));
     }
 
+    // The bound line's sentence for each verdict. A solver failure that a later baseline also
+    // left keeps the second start's account (it left the bound and was refitted there) and adds
+    // where the later baseline has it, instead of replacing it.
+    void boundSentenceForEachVerdict() {
+        BoundVerdict b;
+        b.name = "eta";
+        b.side = "lower";
+        b.bound = 1e-4;
+        b.retryStart = 0.0707107;
+        b.retryValue = 1e-4;
+        QString s = boundSentence(b);
+        QVERIFY2(s.contains("eta ended on its lower bound 0.0001") && s.contains("no lower: the data's answer"), qPrintable(s));
+        b.refitted = true;
+        s = boundSentence(b);
+        QVERIFY2(s.contains("ended there too") && s.contains("refitted there"), qPrintable(s));
+        b.leftLaterTo = 0.501065;
+        s = boundSentence(b);
+        QVERIFY2(s.contains("a later refit of the baseline left it, to 0.5011") && !s.contains("the data's answer;"),
+                 qPrintable(s));
+        b.solverFailure = true;
+        b.retryValue = 0.3;
+        s = boundSentence(b);
+        QVERIFY2(s.contains("eta had stopped on its lower bound 0.0001") && s.contains("a second start from 0.07071 left it (0.3)") &&
+                     s.contains("a solver failure") && s.contains("The baseline adopted later has it at 0.5011"),
+                 qPrintable(s));
+        QVERIFY2(!s.contains("not the data's answer"), qPrintable(s));
+        b.leftLaterTo = NAN;
+        s = boundSentence(b);
+        QVERIFY2(s.contains("a solver failure") && !s.contains("adopted later"), qPrintable(s));
+    }
+
     void loadsRunsAndRejectsBadFiles() {
         IdentifyPanel p;
         QVERIFY(p.loadRuns(damperRuns()));
