@@ -133,14 +133,18 @@ std::string checkBaselineBounds(Loop& L) {
 namespace {
 
 // The bound verdicts of the first baseline fit whose parameter the adopted baseline L.cur is no
-// longer on (BoundVerdict::leftLaterTo).
+// longer on (BoundVerdict::leftLaterTo). A solver failure's own refit, which its verdict already
+// reports, is not a later refit: only a value that has moved since counts.
 void markBoundsLeft(Loop& L) {
     if (L.res.baselineBounds.empty()) return;
     for (const FitParameter& p : parameters(L.cx, L.spec, L.cur.values)) {
         const auto it = L.cur.values.find(p.name);
         if (it == L.cur.values.end()) continue;
-        for (BoundVerdict& b : L.res.baselineBounds)
-            if (b.name == p.name && boundSide(p, it->second) != (b.side == "upper" ? 1 : -1)) b.leftLaterTo = it->second;
+        for (BoundVerdict& b : L.res.baselineBounds) {
+            if (b.name != p.name || boundSide(p, it->second) == (b.side == "upper" ? 1 : -1)) continue;
+            if (b.solverFailure && it->second == b.retryValue) continue;
+            b.leftLaterTo = it->second;
+        }
     }
 }
 

@@ -97,6 +97,31 @@ private slots:
         QCOMPARE(toJson(fx.res)["baseline"]["at_bound"][0]["left_later_to"].get<double>(), b.leftLaterTo);
         QVERIFY(fx.L->cur.ss <= firstBaselineSS * (1.0 + 1e-9));
     }
+    // A solver-failure verdict already says the baseline was refitted off the bound; adopting
+    // that refit is not "a later refit" (D01 read "solver failure (… ended at 114666 …); the
+    // baseline adopted later has it at 114666.380382"). A refit after the bound check that
+    // moves the parameter again is.
+    void boundCheckRefitIsNotALaterRefit() {
+        Fixture fx;
+        std::string why;
+        QVERIFY2(fx.make(synth::makeRuns(synth::trueModel(), 2.0, 0.02, 1), "frictional_lag", 1e-6, why), why.c_str());
+        Loop& L = *fx.L;
+        L.spec.effects.clear();
+        L.cur = L.baseFit;
+        BoundVerdict eps;
+        eps.name = "eta";
+        eps.side = "lower";
+        eps.bound = 1e-4;
+        eps.retryValue = L.cur.values.at("eta");
+        eps.refitted = eps.solverFailure = true;
+        fx.res.baselineBounds = {eps};
+        adoptBaseline(L, "");
+        QVERIFY2(!fx.res.baselineBounds[0].leftLater(), "the bound check's own refit was called a later refit");
+        L.cur.values["eta"] *= 1.5;
+        adoptBaseline(L, "");
+        QVERIFY(fx.res.baselineBounds[0].leftLater());
+        QCOMPARE(fx.res.baselineBounds[0].leftLaterTo, L.cur.values.at("eta"));
+    }
     // A lag of 10 ms in the runs: its size is identified on the final fit and it is kept, with no
     // refit.
     void supportedEffectIsKept() {
