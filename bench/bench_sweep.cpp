@@ -8,11 +8,16 @@
 //     one thread); --compare runs both and counts the down-branch values whose class differs;
 //     --lyapunov also computes the largest Lyapunov exponent per value (as the CLI does by
 //     default): sequentially its companion trajectory runs on the second thread.
+//     --reference N instead compares classifications: the same A range, values independent
+//     (each from rest), at the stepping asked for and at the fine fixed step T/N, and counts the
+//     values whose class/period agree (the fine step is first order: T/128000 is ~13x closer to
+//     the exact motion than the presets' T/10000; issue 15, item 3).
 //  2. a 40 000-point Poincaré section of the Fig. 22 set (A = 0.40 mm): wall time and peak
 //     memory (getrusage ru_maxrss).
 // Usage: bench_sweep [--steps-per-period N (8000)] [--values N (300)] [--threads N (0 = all)]
 //                    [--sequential | --compare] [--lyapunov] [--section-points N (40000)]
 //                    [--skip-sweep] [--skip-section] [--tolerance TOL (0: fixed step)]
+//                    [--reference N (0: none)]
 // With --tolerance the runs are error-controlled (section_stepping.hpp): the step count is the
 // integrator's, not cycles x N, so only wall/CPU time and cycles per second are printed.
 // (8000 steps per period: the step bench_core finds for 1e-3 error/amplitude.)
@@ -191,12 +196,70 @@ SweepResult runFig20Sweep(int values, long n, int threads, bool concurrent, bool
     return r;
 }
 
+// Independent sweep of the Fig. 20 range at one stepping (each value from rest).
+SweepResult independentFig20(int values, long n, int threads, double tolerance) {
+    Preset pr;
+    findPreset("fig20", pr);
+    pr.params.integration.tolerance = tolerance;
+    SweepOptions o;
+    o.key = "A";
+    o.from = 0.1e-3;
+    o.to = 5e-3;
+    o.steps = values;
+    o.direction = SweepDirection::Up;
+    o.mode = SweepMode::Independent;
+    o.settleCycles = 50;
+    o.sampleCycles = 100;
+    o.stepsPerPeriod = n;
+    o.threads = threads;
+    o.lyapunov = false;
+    return bifurcationSweep(pr.params, o);
+}
+
+// The classification of the stepping asked for against a fine fixed step, value by value.
+int compareWithReference(int values, long n, int threads, double tolerance, long refN) {
+    char stepping[64];
+    if (tolerance > 0) std::snprintf(stepping, sizeof stepping, "adaptive, tolerance %g", tolerance);
+    else std::snprintf(stepping, sizeof stepping, "T/%ld", n);
+    auto t0 = std::chrono::steady_clock::now();
+    const SweepResult ref = independentFig20(values, refN, threads, 0.0);
+    const double refWall = seconds(t0);
+    t0 = std::chrono::steady_clock::now();
+    const SweepResult r = independentFig20(values, n, threads, tolerance);
+    const double wall = seconds(t0);
+    if (ref.status != RunStatus::Ok || r.status != RunStatus::Ok || ref.points.size() != r.points.size()) {
+        std::fprintf(stderr, "sweep failed: %s%s\n", ref.message.c_str(), r.message.c_str());
+        return 1;
+    }
+    int agree = 0;
+    std::string where;
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+        const Classification &a = r.points[i].classification, &b = ref.points[i].classification;
+        if (a.motion == b.motion && a.period == b.period) {
+            ++agree;
+            continue;
+        }
+        char buf[96];
+        std::snprintf(buf, sizeof buf, " %.3f (%s%d/%s%d)", r.points[i].value * 1e3, toString(a.motion), a.period,
+                      toString(b.motion), b.period);
+        where += buf;
+    }
+    std::printf("Fig. 20 range, A 0.1-5 mm, %d values independent (from rest), 50 settle + 100 sampled cycles, "
+                "period test 1e-4\n",
+                values);
+    std::printf("  %s against the fixed step T/%ld: %d of %zu values agree in class/period (%.1f s; reference %.1f s)\n",
+                stepping, refN, agree, r.points.size(), wall, refWall);
+    std::printf("  differ [mm] (%s / T/%ld):%s\n", stepping, refN, where.empty() ? " none" : where.c_str());
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     long n = 8000, sectionPoints = 40000;
     double tolerance = 0.0;
     int values = 300, threads = 0;
+    long reference = 0;
     bool sweep = true, section = true, sequential = false, compare = false, lyapunov = false;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--steps-per-period") && i + 1 < argc) n = std::atol(argv[++i]);
@@ -207,14 +270,17 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--compare")) compare = true;
         else if (!std::strcmp(argv[i], "--lyapunov")) lyapunov = true;
         else if (!std::strcmp(argv[i], "--tolerance") && i + 1 < argc) tolerance = std::atof(argv[++i]);
+        else if (!std::strcmp(argv[i], "--reference") && i + 1 < argc) reference = std::atol(argv[++i]);
         else if (!std::strcmp(argv[i], "--skip-sweep")) sweep = false;
         else if (!std::strcmp(argv[i], "--skip-section")) section = false;
         else { std::fprintf(stderr, "unknown argument %s\n", argv[i]); return 2; }
     }
-    if (n < 1 || values < 1 || threads < 0 || sectionPoints < 1) {
-        std::fprintf(stderr, "--steps-per-period, --values and --section-points must be >= 1, --threads >= 0\n");
+    if (n < 1 || values < 1 || threads < 0 || sectionPoints < 1 || reference < 0) {
+        std::fprintf(stderr,
+                     "--steps-per-period, --values and --section-points must be >= 1, --threads and --reference >= 0\n");
         return 2;
     }
+    if (reference > 0) return compareWithReference(values, n, threads, tolerance, reference);
     if (sweep) {
         Preset pr;
         findPreset("fig20", pr);
