@@ -142,28 +142,39 @@ double load1() {
     return getloadavg(l, 1) == 1 ? l[0] : -1.0;
 }
 
-SweepResult runFig20Sweep(int values, long n, int threads, bool concurrent, bool lyapunov, double tolerance) {
-    Preset pr;
-    findPreset("fig20", pr);
-    pr.params.integration.tolerance = tolerance;
+// The benchmark's sweep of the Fig. 20 range: A 0.1-5 mm, 50 settle + 100 sampled cycles.
+SweepOptions fig20Range(int values, long n, int threads) {
     SweepOptions o;
     o.key = "A";
     o.from = 0.1e-3;
     o.to = 5e-3;
     o.steps = values;
-    o.direction = SweepDirection::Both;
-    o.mode = SweepMode::Continuation;
     o.settleCycles = 50;
     o.sampleCycles = 100;
     o.stepsPerPeriod = n;
     o.threads = threads;
+    return o;
+}
+
+SimParams fig20Params(double tolerance) {
+    Preset pr;
+    findPreset("fig20", pr);
+    pr.params.integration.tolerance = tolerance;
+    return pr.params;
+}
+
+SweepResult runFig20Sweep(int values, long n, int threads, bool concurrent, bool lyapunov, double tolerance) {
+    const SimParams p = fig20Params(tolerance);
+    SweepOptions o = fig20Range(values, n, threads);
+    o.direction = SweepDirection::Both;
+    o.mode = SweepMode::Continuation;
     o.concurrentBranches = concurrent;
     o.lyapunov = lyapunov;
     const int used = concurrent || lyapunov ? workerCount(threads, 2) : 1;
     const double loadBefore = load1();
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = cpuSeconds();
-    SweepResult r = bifurcationSweep(pr.params, o);
+    SweepResult r = bifurcationSweep(p, o);
     const double wall = seconds(t0), cpu = cpuSeconds() - c0;
     // Steps: 150 cycles per value and branch, plus the concurrent down branch's lead-in.
     // With the Lyapunov exponent the companion trajectory adds the 100 sampled cycles again.
@@ -198,22 +209,11 @@ SweepResult runFig20Sweep(int values, long n, int threads, bool concurrent, bool
 
 // Independent sweep of the Fig. 20 range at one stepping (each value from rest).
 SweepResult independentFig20(int values, long n, int threads, double tolerance) {
-    Preset pr;
-    findPreset("fig20", pr);
-    pr.params.integration.tolerance = tolerance;
-    SweepOptions o;
-    o.key = "A";
-    o.from = 0.1e-3;
-    o.to = 5e-3;
-    o.steps = values;
+    SweepOptions o = fig20Range(values, n, threads);
     o.direction = SweepDirection::Up;
     o.mode = SweepMode::Independent;
-    o.settleCycles = 50;
-    o.sampleCycles = 100;
-    o.stepsPerPeriod = n;
-    o.threads = threads;
     o.lyapunov = false;
-    return bifurcationSweep(pr.params, o);
+    return bifurcationSweep(fig20Params(tolerance), o);
 }
 
 // The classification of the stepping asked for against a fine fixed step, value by value.
