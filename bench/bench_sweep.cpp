@@ -142,6 +142,14 @@ double load1() {
     return getloadavg(l, 1) == 1 ? l[0] : -1.0;
 }
 
+// "T/8000" or "adaptive, tolerance 0.0001", as the printed lines name a stepping.
+std::string steppingName(long n, double tolerance) {
+    char b[64];
+    if (tolerance > 0) std::snprintf(b, sizeof b, "adaptive, tolerance %g", tolerance);
+    else std::snprintf(b, sizeof b, "T/%ld", n);
+    return b;
+}
+
 // The benchmark's sweep of the Fig. 20 range: A 0.1-5 mm, 50 settle + 100 sampled cycles.
 SweepOptions fig20Range(int values, long n, int threads) {
     SweepOptions o;
@@ -180,12 +188,10 @@ SweepResult runFig20Sweep(int values, long n, int threads, bool concurrent, bool
     // With the Lyapunov exponent the companion trajectory adds the 100 sampled cycles again.
     const double cycles = 2.0 * values * (lyapunov ? 250.0 : 150.0) + (concurrent ? 150.0 : 0.0);
     const double steps = cycles * static_cast<double>(n);
-    char stepping[64];
-    if (tolerance > 0) std::snprintf(stepping, sizeof stepping, "adaptive, tolerance %g", tolerance);
-    else std::snprintf(stepping, sizeof stepping, "T/%ld", n);
+    const std::string stepping = steppingName(n, tolerance);
     std::printf("Fig. 20 continuation sweep (fig20 preset, eps_T = 1.1e4 N/m): A 0.1-5 mm, %d values, "
                 "50 settle + 100 sampled cycles, up and down, %s\n",
-                values, stepping);
+                values, stepping.c_str());
     std::printf("  Lyapunov exponent: %s\n", lyapunov ? (concurrent ? "yes, companion on the branch's thread"
                                                                    : "yes, companion on a second thread")
                                                         : "no");
@@ -218,9 +224,7 @@ SweepResult independentFig20(int values, long n, int threads, double tolerance) 
 
 // The classification of the stepping asked for against a fine fixed step, value by value.
 int compareWithReference(int values, long n, int threads, double tolerance, long refN) {
-    char stepping[64];
-    if (tolerance > 0) std::snprintf(stepping, sizeof stepping, "adaptive, tolerance %g", tolerance);
-    else std::snprintf(stepping, sizeof stepping, "T/%ld", n);
+    const std::string stepping = steppingName(n, tolerance);
     auto t0 = std::chrono::steady_clock::now();
     const SweepResult ref = independentFig20(values, refN, threads, 0.0);
     const double refWall = seconds(t0);
@@ -248,8 +252,8 @@ int compareWithReference(int values, long n, int threads, double tolerance, long
                 "period test 1e-4\n",
                 values);
     std::printf("  %s against the fixed step T/%ld: %d of %zu values agree in class/period (%.1f s; reference %.1f s)\n",
-                stepping, refN, agree, r.points.size(), wall, refWall);
-    std::printf("  differ [mm] (%s / T/%ld):%s\n", stepping, refN, where.empty() ? " none" : where.c_str());
+                stepping.c_str(), refN, agree, r.points.size(), wall, refWall);
+    std::printf("  differ [mm] (%s / T/%ld):%s\n", stepping.c_str(), refN, where.empty() ? " none" : where.c_str());
     return 0;
 }
 
