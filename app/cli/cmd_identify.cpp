@@ -150,6 +150,9 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
                "effect that only absorbs the prediction's discretisation error is not added (default)");
     cmd->add_option("--held-out-alpha", o->req.options.heldOutAlpha,
                     "level of the one-sided paired test over held-out runs an effect must pass, in (0, 1)")->capture_default_str();
+    cmd->add_option("--min-held-out-gain", o->req.options.minHeldOutGain,
+                    "relevance margin: an effect must also lower the held-out MSE by at least this fraction on average "
+                    "over the held-out runs, in [0, 1); 0: significance alone")->capture_default_str();
     cmd->add_option("--identifiability-alpha", o->req.options.identifiabilityAlpha,
                     "level of the size test (effect parameter vs its jackknife s.e.), in (0, 1)")->capture_default_str();
     cmd->add_option("--confounded-vif", o->req.options.confoundedVif,

@@ -37,6 +37,7 @@ ParamIssues IdentifyOptions::validate() const {
     range("simulated_null_bias_steps", simulatedNullBiasSteps, simulatedNullBiasSteps >= 0 && simulatedNullBiasSteps <= 20,
           "in [0, 20]");
     range("held_out_alpha", heldOutAlpha, heldOutAlpha > 0 && heldOutAlpha < 1, "in (0, 1)");
+    range("min_held_out_gain", minHeldOutGain, minHeldOutGain >= 0 && minHeldOutGain < 1, "in [0, 1)");
     range("identifiability_alpha", identifiabilityAlpha, identifiabilityAlpha > 0 && identifiabilityAlpha < 1, "in (0, 1)");
     for (const ParamIssue& i : selfTest.validate()) out.push_back(i);
     return out;
@@ -550,6 +551,7 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
     L.episodes = slipEpisodes(cx, L.fitIdx, opt.stickVelocity_mps);
     res.slipEpisodes = L.episodes;
     res.heldOutAlpha = opt.heldOutAlpha;
+    res.minHeldOutGain = opt.minHeldOutGain;
     res.nullAlpha = opt.nullAlpha;
     res.nullReplicas = opt.nullReplicas;
     res.bicMargin = opt.bicMargin;

@@ -188,6 +188,17 @@ struct IdentifyOptions {
     // the data cannot tell the two apart. 10 is the textbook collinearity threshold (|r| > 0.949).
     double confoundedVif = 10.0;
     double heldOutAlpha = 0.05;      // (2) one-sided level of the paired held-out test
+    // (2b) relevance: the mean over the held-out runs of d_i (test 2) must reach ln(1/(1 − this)),
+    // i.e. the candidate lowers the held-out MSE by at least this fraction. Tests (1)-(2) ask
+    // whether a gain is real; a real gain can still be a sliver of a model error that no
+    // candidate describes (issue 14, item 5: such structure is reported unexplained, not given
+    // the closest catalogue name). On sets made by `stickslip-cli synthesize` without an effect,
+    // sensor masses of a few grams passed (1)-(3) with every held-out run better by 0.03-2.2 % of
+    // its MSE (mean 0.5-2.2 %), where every effect the loop found right on the 35 sets lowered it
+    // by at least 21 % (mean log ratio 0.24, D09's lag) and the damper's smallest added effect by
+    // 8 % (docs/identify-results.md, session 45). 5 % is a statement of what is worth a mechanism,
+    // not a fit to a set; 0 turns the test off.
+    double minHeldOutGain = 0.05;
     double identifiabilityAlpha = 0.05;  // (3) two-sided level of the size test
     int decimate = 0;                // use every n-th sample in the fits; 0: auto (prescribed ≥ 128
                                      // samples per forcing period, dynamics ≈ 500 Hz)
@@ -393,6 +404,7 @@ struct IdentifyResult {
     double slipEpisodes = 0;  // independent units of the BIC (slip episodes in the fit runs)
     double tauInt = 1;        // τ_int of the baseline's residual (samples); n_eff = min(n/τ_int, slipEpisodes)
     double heldOutAlpha = 0.05, identifiabilityAlpha = 0.05;  // the levels used (IdentifyOptions)
+    double minHeldOutGain = 0.05;                              // the relevance margin used (IdentifyOptions)
     double nullAlpha = 0.05, bicMargin = 0.0;
     int nullReplicas = 0;
     bool nullNumerics = false;
@@ -406,6 +418,9 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
 
 nlohmann::json toJson(const Diagnostics& d, bool withSeries);
 nlohmann::json toJson(const IdentifyResult& r);
+// The selection rule with the settings `r` was run with, in words: the one text the JSON report's
+// selection.criterion and the HTML report's candidates table both give.
+std::string selectionRule(const IdentifyResult& r);
 
 // "its size trades off with the baseline's P (correlation r): …" when the candidate's size trades
 // off with a baseline parameter (CandidateScore::tradesOffWithBaseline), else empty.

@@ -57,6 +57,27 @@ nlohmann::json toJson(const Diagnostics& d, bool withSeries) {
     return j;
 }
 
+std::string selectionRule(const IdentifyResult& r) {
+    auto g = [](double v) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%g", v);
+        return std::string(b);
+    };
+    return "An effect is added only if it lowers the BIC (n_eff = min(n / tau_int, slip episodes)) by more than " +
+           g(r.bicMargin) + " AND lowers the sum of squares by more than the " + g(100.0 * (1.0 - r.nullAlpha)) +
+           " % quantile of what " + std::to_string(r.nullReplicas) +
+           " noise replicas of these runs give (AR(1) noise per run and channel, level and colour from the current residual, "
+           "linearised candidate model) AND lowers the held-out NRMSE (leave-one-run-out, or the validation runs) consistently "
+           "over the K held-out runs (one-sided p < " + g(r.heldOutAlpha) +
+           " on the runs' ln MSE ratios: the exact sign-flip test when 2^-K < " + g(r.heldOutAlpha) +
+           ", else the paired t-test) AND by at least " + g(100.0 * r.minHeldOutGain) +
+           " % of the held-out MSE on average over those runs (relevance margin) AND its size parameter differs from the value "
+           "at which the effect vanishes by more than t_(K-1, 1-alpha/2) standard errors (alpha = " + g(r.identifiabilityAlpha) +
+           "; the jackknife over the leave-one-run-out fits or, where larger, the Jacobian's x sqrt(tau_int)). Once the rounds "
+           "end, an added effect whose size fails that test on the final fit (Jacobian x sqrt(tau_int)) and whose BIC against "
+           "the final model refitted without it is not lower by more than the margin is dropped again (the backward check).";
+}
+
 namespace {
 
 // The baseline's parameters, note and bound verdicts.
@@ -158,19 +179,9 @@ nlohmann::json candidateJson(const CandidateScore& c) {
 
 // The selection rule and its settings.
 nlohmann::json selectionJson(const IdentifyResult& r) {
-    return {{"criterion", "BIC with n_eff = min(n / tau_int, slip episodes); an effect must lower it by more than "
-                                    "the margin AND lower the sum of squares by more than the (1 - null_alpha) quantile of "
-                                    "what noise replicas of these runs give (AR(1) per run and channel from the current "
-                                    "residual, linearised candidate model) AND lower the held-out NRMSE (leave-one-run-out, or the --validate-on runs) "
-                                    "consistently over the held-out runs (one-sided exact sign-flip test on ln MSE ratios when 2^-K < alpha, else the "
-                                    "paired t-test, p < alpha) "
-                                    "AND its size parameter must differ from its vanishing value by more than t_(K-1,1-alpha/2) "
-                                    "standard errors: the jackknife over the leave-one-run-out fits or, where larger, the "
-                                    "Jacobian's x sqrt(tau_int); once the rounds end, an added effect whose size fails that "
-                                    "test on the final fit (Jacobian x sqrt(tau_int)) and whose BIC against the final model "
-                                    "refitted without it is not lower by more than the margin is dropped (backward check)"},
+    return {{"criterion", selectionRule(r)},
                       {"null_alpha", num(r.nullAlpha)}, {"null_replicas", r.nullReplicas}, {"bic_margin", num(r.bicMargin)}, {"null_numerics", r.nullNumerics}, {"restart_margin", num(r.restartMargin)},
-                      {"held_out_alpha", num(r.heldOutAlpha)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
+                      {"held_out_alpha", num(r.heldOutAlpha)}, {"min_held_out_gain", num(r.minHeldOutGain)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
                       {"tau_int_samples", num(r.tauInt)},
                       {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation}, {"law_channel_edge_guard_samples", r.edgeGuard}, {"jacobian", r.jacobian},
                       {"coordinates", r.coordinates},

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numeric>
 #include <thread>
 
 #include "../integrate/dynamics.hpp"
+#include "fit_internal.hpp"
 #include "identify_internal.hpp"
 
 namespace stickslip::identify::detail {
@@ -88,6 +90,21 @@ void creditRestartGain(CandidateScore& sc, double ssFirst, double ssRefit) {
 
 namespace {
 
+// Test (2b): the mean held-out gain, as a fraction of the MSE, reaches the relevance margin.
+bool passesRelevance(const IdentifyOptions& opt, CandidateScore& sc) {
+    if (!(opt.minHeldOutGain > 0)) return true;
+    const double need = -std::log1p(-opt.minHeldOutGain);
+    if (std::isfinite(sc.heldOutMeanLogRatio) && sc.heldOutMeanLogRatio >= need) return true;
+    char pct[64];
+    std::snprintf(pct, sizeof pct, "%.1f %%", 100.0 * -std::expm1(-sc.heldOutMeanLogRatio));
+    char margin[32];
+    std::snprintf(margin, sizeof margin, "%g %%", 100.0 * opt.minHeldOutGain);
+    sc.reason = "lowers the held-out error consistently over the " + std::to_string(sc.heldOutUnits) +
+                " held-out runs, but by " + pct + " of the MSE on average (mean log MSE ratio " + fmt(sc.heldOutMeanLogRatio) +
+                "), below the relevance margin of " + margin + ": a sliver of structure it does not describe";
+    return false;
+}
+
 // Test (2): the held-out error, pooled and paired over the runs in `units`.
 bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const ModelErrors& ref, const ModelErrors& with,
                        const std::vector<size_t>& units) {
@@ -142,7 +159,7 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
                     " >= " + std::to_string(opt.heldOutAlpha) + " (mean log MSE ratio " + std::to_string(pt.meanLogRatio) + ")";
         return false;
     }
-    return true;
+    return passesRelevance(opt, sc);
 }
 
 }  // namespace

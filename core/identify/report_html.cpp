@@ -185,15 +185,8 @@ void writeEffectsAdded(std::ostream& o, const IdentifyResult& r) {
 
 // Every candidate tried, with the numbers of each test of the selection rule and its verdict.
 void writeCandidates(std::ostream& o, const IdentifyResult& r) {
-    o << "</table>\n<h3>Candidates</h3><p>Added only if &Delta;BIC &lt; &minus;" << fmt(r.bicMargin, "%g")
-      << ", the gain in the sum of squares exceeds the " << fmt(100.0 * (1.0 - r.nullAlpha), "%g") << " % quantile of what "
-      << r.nullReplicas << " noise replicas of these runs give (AR(1) noise of the residual's level and colour), the held-out error is lower "
-         "consistently over the held-out runs (one-sided p &lt; " << fmt(r.heldOutAlpha, "%g")
-      << " on the runs' log MSE ratios: the exact sign-flip test when 2<sup>&minus;K</sup> &lt; " << fmt(r.heldOutAlpha, "%g")
-      << " for K held-out runs, else the paired t-test) and the size parameter is more than t<sub>K&minus;1</sub> standard errors (the jackknife over the leave-one-run-out fits or, where larger, the Jacobian's &times; &radic;&tau;<sub>int</sub>) from where the effect vanishes "
-         "(level " << fmt(r.identifiabilityAlpha, "%g") << "). Once the rounds end, an added effect whose size fails that test on the final fit "
-         "(the Jacobian's standard error &times; &radic;&tau;<sub>int</sub>) and whose BIC against the final model refitted without it is not lower "
-         "by more than the margin is dropped again (the backward check; its row says so).</p><table><tr><th>effect</th><th>round</th><th>&Delta;BIC</th>"
+    o << "</table>\n<h3>Candidates</h3><p>" << htmlEscape(selectionRule(r)) << " Each row says which test stopped the candidate."
+         "</p><table><tr><th>effect</th><th>round</th><th>&Delta;BIC</th>"
          "<th>fit NRMSE</th><th>gain / noise quantile</th><th>held-out NRMSE</th><th>held-out p</th><th>|size &minus; vanishing value| / s.e.</th><th>t crit.</th>"
          "<th>verdict</th></tr>\n";
     for (const CandidateScore& c : r.candidates) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/identify/identify.hpp"
 #include "core/identify/report_html.hpp"
 
 using namespace stickslip::identify;
@@ -333,6 +334,20 @@ private slots:
         QVERIFY(!std::regex_search(page, std::regex(">-?(nan|inf)<", std::regex::icase)));
         QVERIFY(has(page, "No unexplained structure"));
         QVERIFY(!has(page, "Recovery self-test"));  // it did not run
+    }
+
+    // The selection rule is one text (selectionRule) with the settings the result was run with:
+    // the HTML candidates table and the JSON report's selection.criterion give the same words.
+    void ruleTextIsTheOneTheJsonGives() {
+        IdentifyResult r = handMadeResult();
+        r.heldOutAlpha = 0.01;
+        r.minHeldOutGain = 0.07;
+        const std::string rule = selectionRule(r);
+        QVERIFY2(has(rule, "one-sided p < 0.01"), rule.c_str());
+        QVERIFY2(has(rule, "at least 7 % of the held-out MSE"), rule.c_str());
+        QVERIFY(has(renderHtmlReport(r), htmlEscape(rule)));
+        QCOMPARE(toJson(r)["selection"]["criterion"].get<std::string>(), rule);
+        QCOMPARE(toJson(r)["selection"]["min_held_out_gain"].get<double>(), 0.07);
     }
 
     // Strings that come from outside the program (run file names, notes and reasons that quote
