@@ -96,7 +96,7 @@ struct IdentifyOptions {
     double zetaNominal = 0.005;                                   // dynamics: ζ of the baseline rig ("very small")
     std::vector<std::string> candidates;                          // empty: the whole catalogue
     int maxEffects = 3;
-    // Selection rule (an effect is added only if it passes all three, in this order):
+    // Selection rule (an effect is added only if it passes every test, in this order):
     //  (1) penalised fit: ΔBIC < −bicMargin, BIC with n_eff = min(n/τ_int, slip episodes); ranks
     //      the candidates. (1b) the gain in the sum of squares beyond the (1 − nullAlpha)
     //      quantile of what noise replicas of these runs give (noise_null.hpp): the margin is
@@ -110,6 +110,7 @@ struct IdentifyOptions {
     //      is what (1) cannot tell from an effect: its gain is real in-sample for any
     //      n_eff. The paired test asks whether the gain carries over to unseen runs beyond the
     //      run-to-run scatter of the gain.
+    //  (2b) relevance: the mean of those d_i reaches ln(1/(1 − minHeldOutGain)) (below).
     //  (3) identifiability: the effect's size parameter (params[0]) differs from the value at
     //      which the effect vanishes by more than t_{K−1, 1−α/2} (α = identifiabilityAlpha)
     //      jackknife standard errors over the K leave-one-run-out fits (Jacobian stderr ×
