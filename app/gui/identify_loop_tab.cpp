@@ -93,12 +93,23 @@ void IdentifyLoopTab::buildLoopLimits(QFormLayout* form) {
     bicMargin_->setRange(0, 1000);
     bicMargin_->setValue(IdentifyOptions{}.bicMargin);
     bicMargin_->setPrefix(tr("ΔBIC < −"));
+    // Selection test (2b): the relevance margin on the held-out gain (IdentifyOptions::minHeldOutGain).
+    minHeldOutGain_ = new QDoubleSpinBox(this);
+    minHeldOutGain_->setRange(0, 99);
+    minHeldOutGain_->setDecimals(1);
+    minHeldOutGain_->setValue(100.0 * IdentifyOptions{}.minHeldOutGain);
+    minHeldOutGain_->setPrefix(tr("held-out gain ≥ "));
+    minHeldOutGain_->setSuffix(tr(" %"));
+    minHeldOutGain_->setToolTip(tr("Relevance margin: an effect must also lower the held-out MSE by at least this much on "
+                                   "average over the held-out runs. A consistent gain smaller than this is a sliver of "
+                                   "structure the candidate does not describe. 0: significance alone."));
     multistarts_ = new QSpinBox(this);
     multistarts_->setRange(1, 20);
     multistarts_->setValue(2);
     multistarts_->setPrefix(tr("starts "));
     row->addWidget(maxEffects_);
     row->addWidget(bicMargin_);
+    row->addWidget(minHeldOutGain_);
     row->addWidget(multistarts_);
     form->addRow(tr("Loop"), row);
 }
@@ -156,6 +167,7 @@ void IdentifyLoopTab::fillRequest(IdentifyRequest& r) const {
     if (!all) r.options.candidates = cands;
     r.options.maxEffects = maxEffects_->value();
     r.options.bicMargin = bicMargin_->value();
+    r.options.minHeldOutGain = minHeldOutGain_->value() / 100.0;
     r.options.multistarts = multistarts_->value();
 }
 

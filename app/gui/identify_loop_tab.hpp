@@ -56,7 +56,7 @@ private:
     std::map<std::string, QCheckBox*> free_;
     QListWidget* candidateList_ = nullptr;
     QSpinBox *maxEffects_ = nullptr, *multistarts_ = nullptr;
-    QDoubleSpinBox* bicMargin_ = nullptr;
+    QDoubleSpinBox *bicMargin_ = nullptr, *minHeldOutGain_ = nullptr;
     QTableWidget* beforeAfter_ = nullptr;
     QTableWidget* effects_ = nullptr;
     QTableWidget* candidates_ = nullptr;

@@ -293,6 +293,9 @@ private slots:
         p.setMultistarts(1);
         const IdentifyRequest req = p.identifyRequest();
         QCOMPARE(req.options.candidates.size(), size_t(2));
+        // The panel's selection settings start at the CLI's defaults (IdentifyOptions).
+        QCOMPARE(req.options.bicMargin, IdentifyOptions{}.bicMargin);
+        QCOMPARE(req.options.minHeldOutGain, IdentifyOptions{}.minHeldOutGain);
         QSignalSpy shown(&p, &IdentifyPanel::identifyShown);
         const double cpu0 = cpuSeconds();
         QElapsedTimer wall;
@@ -454,7 +457,8 @@ private slots:
         QSignalSpy shown(p, &IdentifyPanel::fitShown);
         p->startFit();
         QVERIFY(shown.wait(120000));
-        p->controlTabs()->setCurrentIndex(1);
+        // The tab shown in the screenshot: the Fit tab unless IDENTIFY_PANEL_TAB names another index.
+        p->controlTabs()->setCurrentIndex(qEnvironmentVariableIsSet("IDENTIFY_PANEL_TAB") ? qEnvironmentVariableIntValue("IDENTIFY_PANEL_TAB") : 1);
         const QString shot = qEnvironmentVariable("IDENTIFY_PANEL_SHOT");
         if (!shot.isEmpty()) {
             QTest::qWait(300);
