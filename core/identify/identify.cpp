@@ -9,6 +9,7 @@
 #include <numeric>
 #include <optional>
 
+#include "fit_internal.hpp"
 #include "identify_internal.hpp"
 #include "identify_loop.hpp"
 #include "simulated_null.hpp"
@@ -132,11 +133,11 @@ bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
         if (L.cx.anyDynamics) alt["m"] = start["m"];
         L.progress("baseline from the default law", 0.0);
         const FitOutcome g = fitSpec(L.cx, L.spec, alt, L.fitIdx, L.opt.multistarts, L.res.fits, true);
-        note = "the fit from the given start explained none of the force (fit NRMSE " + std::to_string(L.cur.nrmse()) +
+        note = "the fit from the given start explained none of the force (fit NRMSE " + fmt(L.cur.nrmse()) +
                ": the law predicts no force there and the solver cannot leave), ";
         if (g.ok && g.ss < L.cur.ss) {
             L.cur = g;
-            note += "refitted from the default law (fit NRMSE " + std::to_string(g.nrmse()) + ")";
+            note += "refitted from the default law (fit NRMSE " + fmt(g.nrmse()) + ")";
         } else {
             note += "and the default law's start did no better";
         }
@@ -223,7 +224,7 @@ std::optional<Tried> fitCandidate(Loop& L, Round& R, const std::string& c) {
         findEffect(c, info);
         t.sc.reason = startNote + "parameter " + info.params.front().name + " ended on its physical " + side +
                       " bound from two starts (scanned, and halfway to the bound): the data's answer, not a solver "
-                      "failure; not identified (dBIC " + std::to_string(t.sc.deltaBic) + " not credited)";
+                      "failure; not identified (dBIC " + fmt(t.sc.deltaBic) + " not credited)";
         L.scores[c] = t.sc;
         return std::nullopt;
     }
@@ -267,14 +268,14 @@ bool beatsNoiseNull(Loop& L, Round& R, Tried& t) {
     sc.nullReplicas = static_cast<int>(ng.gains.size());
     if (numerics) sc.numericsGain = ng.offsetGain;
     if (sc.gain > sc.nullGain) return true;
-    sc.reason = "gain in the sum of squares " + std::to_string(sc.gain) + " is within the " +
-                std::to_string(100.0 * (1.0 - L.opt.nullAlpha)) + " % quantile of " + std::to_string(sc.nullReplicas) +
-                " noise replicas of these runs (" + std::to_string(sc.nullGain) + ")" +
-                (numerics ? " carrying the prediction's numerical error (alone it gives " + std::to_string(ng.offsetGain) + ")"
+    sc.reason = "gain in the sum of squares " + fmt(sc.gain) + " is within the " +
+                fmt(100.0 * (1.0 - L.opt.nullAlpha)) + " % quantile of " + std::to_string(sc.nullReplicas) +
+                " noise replicas of these runs (" + fmt(sc.nullGain) + ")" +
+                (numerics ? " carrying the prediction's numerical error (alone it gives " + fmt(ng.offsetGain) + ")"
                           : std::string()) +
                 ": noise alone gives as much" +
                 (sc.ownMinimumGain > 0.0 ? " (the current model at the candidate's point without the effect already "
-                                           "lowers the sum of squares by " + std::to_string(sc.ownMinimumGain) +
+                                           "lowers the sum of squares by " + fmt(sc.ownMinimumGain) +
                                            ": that part is the current model's own, not the effect's)"
                                          : std::string());
     return false;
@@ -298,12 +299,12 @@ bool beatsSimulatedNull(Loop& L, Round& R, Tried& t) {
     sc.simulatedNullGain = momentMatchedGammaQuantile(sn.gains, 1.0 - L.opt.nullAlpha);
     const double gain = sc.gain != CandidateScore::kNoTest ? sc.gain : L.cur.ss - t.fit.ss;
     if (gain > sc.simulatedNullGain) return true;
-    sc.reason = "gain in the sum of squares " + std::to_string(gain) + " is within the " +
-                std::to_string(100.0 * (1.0 - L.opt.nullAlpha)) + " % quantile (" + std::to_string(sc.simulatedNullGain) +
+    sc.reason = "gain in the sum of squares " + fmt(gain) + " is within the " +
+                fmt(100.0 * (1.0 - L.opt.nullAlpha)) + " % quantile (" + fmt(sc.simulatedNullGain) +
                 ") of what " + std::to_string(sn.gains.size()) +
                 " replicas of these runs simulated from the current model, with their noise, give after the same "
                 "cleaning and fits (mean " +
-                std::to_string(std::accumulate(sn.gains.begin(), sn.gains.end(), 0.0) / sn.gains.size()) +
+                fmt(std::accumulate(sn.gains.begin(), sn.gains.end(), 0.0) / sn.gains.size()) +
                 "): the chain alone gives as much";
     return false;
 }
@@ -320,14 +321,14 @@ int selectCandidate(Loop& L, Round& R, std::vector<Tried>& tried, ModelErrors& m
             // The margin cannot tell noise from a real gain the runs support weakly: say how much
             // evidence they could give (n_eff), not that noise explains it.
             sc.reason = std::string(ti == 0 ? "best candidate of " + R.label() + " but " : "") + "dBIC = " +
-                        std::to_string(sc.deltaBic) + " is not below -" + std::to_string(L.opt.bicMargin) +
+                        fmt(sc.deltaBic) + " is not below -" + fmt(L.opt.bicMargin) +
                         " with n_eff = " + std::to_string(static_cast<long>(std::lround(sc.neff))) + " (" + sc.neffLimit +
-                        "): its fit NRMSE " + std::to_string(sc.fitNrmse) +
+                        "): its fit NRMSE " + fmt(sc.fitNrmse) +
                         " is not strong evidence for it on these runs";
             continue;
         }
         if (chosen >= 0) {
-            sc.reason = "dBIC = " + std::to_string(sc.deltaBic) + " but " + tried[chosen].sc.name + " was added in " +
+            sc.reason = "dBIC = " + fmt(sc.deltaBic) + " but " + tried[chosen].sc.name + " was added in " +
                         R.label();
             continue;
         }
@@ -336,9 +337,9 @@ int selectCandidate(Loop& L, Round& R, std::vector<Tried>& tried, ModelErrors& m
             const double r = sc.sizeCorrelation.at(with);
             sc.confoundedWith = with;
             sc.reason = "confounded with " + with + ": their sizes trade off in the joint fit (correlation " +
-                        std::to_string(r) + ", variance inflation " + std::to_string(1.0 / std::max(1.0 - r * r, 1e-300)) +
-                        " > " + std::to_string(L.opt.confoundedVif) + "): the data cannot tell the two apart; dBIC " +
-                        std::to_string(sc.deltaBic) + " not credited";
+                        fmt(r) + ", variance inflation " + fmt(1.0 / std::max(1.0 - r * r, 1e-300)) +
+                        " > " + fmt(L.opt.confoundedVif) + "): the data cannot tell the two apart; dBIC " +
+                        fmt(sc.deltaBic) + " not credited";
             continue;
         }
         if (L.opt.nullReplicas > 0 && !beatsNoiseNull(L, R, tried[ti])) continue;
@@ -462,10 +463,10 @@ void finishReport(Loop& L) {
             return std::abs(a.correlation) < std::abs(b.correlation);
         });
         res.unexplainedReason = "residual is not white after the loop (Ljung-Box p = " +
-                                std::to_string(res.diagnosticsAfter.whiteness.pValue) + ") and the structure is large (variance / "
+                                fmt(res.diagnosticsAfter.whiteness.pValue) + ") and the structure is large (variance / "
                                 "successive-difference noise variance - 1 = " +
-                                std::to_string(res.diagnosticsAfter.whiteness.structureRatio) + "); largest correlation: " +
-                                (top != cs.end() ? top->signal + " r = " + std::to_string(top->correlation) : "none") +
+                                fmt(res.diagnosticsAfter.whiteness.structureRatio) + "); largest correlation: " +
+                                (top != cs.end() ? top->signal + " r = " + fmt(top->correlation) : "none") +
                                 "; no catalogue candidate lowered the penalised and held-out error further";
     }
     for (size_t i = 0; i < L.cx.runs.size(); ++i) {

@@ -90,6 +90,13 @@ void creditRestartGain(CandidateScore& sc, double ssFirst, double ssRefit) {
 
 namespace {
 
+// Six significant digits: two held-out errors that a candidate barely moves stay distinguishable.
+std::string fmt6(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6g", v);
+    return b;
+}
+
 // Test (2b): the mean held-out gain, as a fraction of the MSE, reaches the relevance margin.
 bool passesRelevance(const IdentifyOptions& opt, CandidateScore& sc) {
     if (!(opt.minHeldOutGain > 0)) return true;
@@ -116,8 +123,8 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
     }
     if (std::isfinite(ref.validationNrmse) && std::isfinite(with.validationNrmse) &&
         !(with.validationNrmse < ref.validationNrmse)) {
-        sc.reason = "lowers the fit error (dBIC " + std::to_string(sc.deltaBic) + ") but not the held-out error (" +
-                    std::to_string(with.validationNrmse) + " vs " + std::to_string(ref.validationNrmse) + ")";
+        sc.reason = "lowers the fit error (dBIC " + fmt(sc.deltaBic) + ") but not the held-out error (" +
+                    fmt6(with.validationNrmse) + " vs " + fmt6(ref.validationNrmse) + ")";
         return false;
     }
     std::vector<double> b, a;
@@ -152,11 +159,11 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
                 return false;
             }
     } else if (!(sc.heldOutP < opt.heldOutAlpha)) {
-        sc.reason = "held-out error lower pooled (" + std::to_string(with.validationNrmse) + " vs " +
-                    std::to_string(ref.validationNrmse) + ") but not consistently over the " + std::to_string(pt.units) +
-                    " held-out runs: " + (exactDecides ? std::string("exact sign-flip test") : "paired t = " + std::to_string(pt.t)) +
-                    ", one-sided p = " + std::to_string(sc.heldOutP) +
-                    " >= " + std::to_string(opt.heldOutAlpha) + " (mean log MSE ratio " + std::to_string(pt.meanLogRatio) + ")";
+        sc.reason = "held-out error lower pooled (" + fmt6(with.validationNrmse) + " vs " +
+                    fmt6(ref.validationNrmse) + ") but not consistently over the " + std::to_string(pt.units) +
+                    " held-out runs: " + (exactDecides ? std::string("exact sign-flip test") : "paired t = " + fmt(pt.t)) +
+                    ", one-sided p = " + fmt(sc.heldOutP) +
+                    " >= " + fmt(opt.heldOutAlpha) + " (mean log MSE ratio " + fmt(pt.meanLogRatio) + ")";
         return false;
     }
     return passesRelevance(opt, sc);
@@ -211,9 +218,9 @@ bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit
     sc.sizeStderr = se;
     sc.sizeCritical = crit;
     if (std::isfinite(value) && std::isfinite(se) && !(std::abs(value - none) > crit * se)) {
-        sc.reason = "lowers the fit and held-out errors but its size " + sc.sizeParam + " = " + std::to_string(value) +
-                    " is not identified: |value - " + std::to_string(none) + "| <= " + std::to_string(crit) + " x " +
-                    std::to_string(se) + " (" + sc.sizeStderrKind + ")";
+        sc.reason = "lowers the fit and held-out errors but its size " + sc.sizeParam + " = " + fmt(value) +
+                    " is not identified: |value - " + fmt(none) + "| <= " + fmt(crit) + " x " +
+                    fmt(se) + " (" + sc.sizeStderrKind + ")";
         return false;
     }
     return true;
