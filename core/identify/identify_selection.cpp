@@ -99,7 +99,9 @@ std::string fmt6(double v) {
 
 // Test (2b): the mean held-out gain, as a fraction of the MSE, reaches the relevance margin.
 bool passesRelevance(const IdentifyOptions& opt, CandidateScore& sc) {
-    if (!(opt.minHeldOutGain > 0)) return true;
+    // No held-out run (a single fit run and no validation runs): nothing to measure the gain on;
+    // as with fewer than 3 runs, the weaker guards decide.
+    if (!(opt.minHeldOutGain > 0) || sc.heldOutUnits == 0) return true;
     const double need = -std::log1p(-opt.minHeldOutGain);
     if (std::isfinite(sc.heldOutMeanLogRatio) && sc.heldOutMeanLogRatio >= need) return true;
     char pct[64];

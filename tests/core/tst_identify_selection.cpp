@@ -217,6 +217,13 @@ private slots:
         CandidateScore again;
         again.name = "sensor_inertia";
         QVERIFY2(passesSelection(cx, again, FitOutcome{}, ref, with(1.0), {}, {0, 1, 2, 3, 4}, 1.0), again.reason.c_str());
+        // No held-out run at all (one fit run): nothing to measure relevance on, so it does not decide.
+        CandidateScore none;
+        none.name = "sensor_inertia";
+        ModelErrors noRuns;
+        noRuns.validationNrmse = std::numeric_limits<double>::quiet_NaN();
+        QVERIFY2(select(none, noRuns, noRuns), none.reason.c_str());
+        QCOMPARE(none.heldOutUnits, 0);
     }
 
     // Which parameters the law run along the measured slip sees.
