@@ -35,20 +35,26 @@ void writeSet(const SynthOptions& o, const QString& dir) {
     if (!io::writeFileAtomically(dir.toStdString() + "/manifest.json", r.manifest.dump(1), &err)) qFatal("%s", err.c_str());
 }
 
+// The runs of the set `o` describes, written to a temporary directory and read back as a user's
+// files are (with `withRecordings`, each keeps its recording for the simulated null).
+std::vector<IdentifyRun> writtenRuns(const SynthOptions& o, bool withRecordings = false) {
+    QTemporaryDir dir;
+    if (!dir.isValid()) qFatal("no temporary directory");
+    writeSet(o, dir.path());
+    return rigset::loadRuns(dir.path().toStdString(), o.runs, INFINITY, withRecordings);
+}
+
 }  // namespace
 
 class TstIdentifySynthesized : public QObject {
     Q_OBJECT
 private slots:
     void setWithoutEffectAddsNothing() {
-        QTemporaryDir dir;
-        QVERIFY(dir.isValid());
         SynthOptions o;
         o.seed = 1;
-        writeSet(o, dir.path());
         IdentifyOptions opt;
         opt.maskEdgeGuard = true;
-        const IdentifyResult r = identifyEffects(rigset::loadRuns(dir.path().toStdString(), 5, INFINITY), opt);
+        const IdentifyResult r = identifyEffects(writtenRuns(o), opt);
         QVERIFY2(r.ok, r.message.c_str());
         for (const CandidateScore& c : r.candidates)
             qInfo("%s round %d dBIC %.2f gain %.4g (own minimum %.4g, null %.4g): %s", c.name.c_str(), c.round, c.deltaBic,
@@ -74,12 +80,9 @@ private slots:
     // average. The relevance margin (IdentifyOptions::minHeldOutGain, test 2b) stops it, and the
     // candidate's row says so (docs/identify-results.md, session 45).
     void relevanceMarginStopsASliverOfStructure() {
-        QTemporaryDir dir;
-        QVERIFY(dir.isValid());
         SynthOptions o;
         o.seed = 6;
-        writeSet(o, dir.path());
-        const IdentifyResult r = identifyEffects(rigset::loadRuns(dir.path().toStdString(), 5, INFINITY), IdentifyOptions{});
+        const IdentifyResult r = identifyEffects(writtenRuns(o), IdentifyOptions{});
         QVERIFY2(r.ok, r.message.c_str());
         bool stopped = false;
         for (const CandidateScore& c : r.candidates) {
@@ -95,20 +98,17 @@ private slots:
     // set with a real sensor mass (86 g, seed 108's size): replicas are made from the bias-corrected
     // current model, their gains are far below the real one, and the effect is added.
     void simulatedNullKeepsARealEffect() {
-        QTemporaryDir dir;
-        QVERIFY(dir.isValid());
         SynthOptions o;
         o.seed = 108;
         o.runs = 3;
         o.seconds = 8.0;
         o.effects = {{"sensor_inertia", {0.086}}};
-        writeSet(o, dir.path());
         IdentifyOptions opt;
         opt.candidates = {"sensor_inertia"};
         opt.simulatedNullReplicas = 2;
         opt.simulatedNullBiasSteps = 1;
         opt.reprepare = rigset::reprepare;
-        const IdentifyResult r = identifyEffects(rigset::loadRuns(dir.path().toStdString(), 3, INFINITY, true), opt);
+        const IdentifyResult r = identifyEffects(writtenRuns(o, true), opt);
         QVERIFY2(r.ok, r.message.c_str());
         QCOMPARE(r.candidates.size(), size_t{1});
         const CandidateScore& c = r.candidates.front();
