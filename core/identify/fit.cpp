@@ -4,6 +4,7 @@
 // fit_internal.hpp; the standard errors at the optimum in fit_uncertainty.cpp.
 #include "fit.hpp"
 
+#include <cstdio>
 #include <ceres/ceres.h>
 
 #include <algorithm>
@@ -20,11 +21,10 @@ namespace stickslip::identify {
 
 namespace detail {
 
-std::string fmt(double v) {
-    std::ostringstream o;
-    o.precision(4);
-    o << v;
-    return o.str();
+std::string fmt(double v, const char* f) {
+    char b[64];
+    std::snprintf(b, sizeof b, f, v);
+    return b;
 }
 
 }  // namespace detail

@@ -150,8 +150,8 @@ private:
     uint64_t clock_ = 0;
 };
 
-// A number with 4 significant digits, for messages.
-std::string fmt(double v);
+// A number for messages: 4 significant digits, or the printf format `f` (one double).
+std::string fmt(double v, const char* f = "%.4g");
 
 // Standard errors, correlations and identifiability at the optimum bestZ (FitProblem::
 // uncertainty): the plain residuals and a central-difference Jacobian there

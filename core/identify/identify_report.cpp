@@ -4,6 +4,8 @@
 
 #include "identify.hpp"
 
+#include "fit_internal.hpp"
+
 namespace stickslip::identify {
 
 namespace {
@@ -58,11 +60,7 @@ nlohmann::json toJson(const Diagnostics& d, bool withSeries) {
 }
 
 std::string selectionRule(const IdentifyResult& r) {
-    auto g = [](double v) {
-        char b[32];
-        std::snprintf(b, sizeof b, "%g", v);
-        return std::string(b);
-    };
+    auto g = [](double v) { return detail::fmt(v, "%g"); };
     return "An effect is added only if it lowers the BIC (n_eff = min(n / tau_int, slip episodes)) by more than " +
            g(r.bicMargin) + " AND lowers the sum of squares by more than the " + g(100.0 * (1.0 - r.nullAlpha)) +
            " % quantile of what " + std::to_string(r.nullReplicas) +

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -90,13 +89,6 @@ void creditRestartGain(CandidateScore& sc, double ssFirst, double ssRefit) {
 
 namespace {
 
-// Six significant digits: two held-out errors that a candidate barely moves stay distinguishable.
-std::string fmt6(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.6g", v);
-    return b;
-}
-
 // Test (2b): the mean held-out gain, as a fraction of the MSE, reaches the relevance margin.
 bool passesRelevance(const IdentifyOptions& opt, CandidateScore& sc) {
     // No held-out run (a single fit run and no validation runs): nothing to measure the gain on;
@@ -104,13 +96,10 @@ bool passesRelevance(const IdentifyOptions& opt, CandidateScore& sc) {
     if (!(opt.minHeldOutGain > 0) || sc.heldOutUnits == 0) return true;
     const double need = -std::log1p(-opt.minHeldOutGain);
     if (std::isfinite(sc.heldOutMeanLogRatio) && sc.heldOutMeanLogRatio >= need) return true;
-    char pct[64];
-    std::snprintf(pct, sizeof pct, "%.1f %%", 100.0 * -std::expm1(-sc.heldOutMeanLogRatio));
-    char margin[32];
-    std::snprintf(margin, sizeof margin, "%g %%", 100.0 * opt.minHeldOutGain);
-    sc.reason = "lowers the held-out error consistently over the " + std::to_string(sc.heldOutUnits) +
-                " held-out runs, but by " + pct + " of the MSE on average (mean log MSE ratio " + fmt(sc.heldOutMeanLogRatio) +
-                "), below the relevance margin of " + margin + ": a sliver of structure it does not describe";
+    sc.reason = "lowers the held-out error consistently over the " + std::to_string(sc.heldOutUnits) + " held-out runs, but by " +
+                fmt(100.0 * -std::expm1(-sc.heldOutMeanLogRatio), "%.1f") + " % of the MSE on average (mean log MSE ratio " +
+                fmt(sc.heldOutMeanLogRatio) + "), below the relevance margin of " + fmt(100.0 * opt.minHeldOutGain, "%g") +
+                " %: a sliver of structure it does not describe";
     return false;
 }
 
@@ -126,7 +115,7 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
     if (std::isfinite(ref.validationNrmse) && std::isfinite(with.validationNrmse) &&
         !(with.validationNrmse < ref.validationNrmse)) {
         sc.reason = "lowers the fit error (dBIC " + fmt(sc.deltaBic) + ") but not the held-out error (" +
-                    fmt6(with.validationNrmse) + " vs " + fmt6(ref.validationNrmse) + ")";
+                    fmt(with.validationNrmse, "%.6g") + " vs " + fmt(ref.validationNrmse, "%.6g") + ")";
         return false;
     }
     std::vector<double> b, a;
@@ -161,8 +150,8 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
                 return false;
             }
     } else if (!(sc.heldOutP < opt.heldOutAlpha)) {
-        sc.reason = "held-out error lower pooled (" + fmt6(with.validationNrmse) + " vs " +
-                    fmt6(ref.validationNrmse) + ") but not consistently over the " + std::to_string(pt.units) +
+        sc.reason = "held-out error lower pooled (" + fmt(with.validationNrmse, "%.6g") + " vs " +
+                    fmt(ref.validationNrmse, "%.6g") + ") but not consistently over the " + std::to_string(pt.units) +
                     " held-out runs: " + (exactDecides ? std::string("exact sign-flip test") : "paired t = " + fmt(pt.t)) +
                     ", one-sided p = " + fmt(sc.heldOutP) +
                     " >= " + fmt(opt.heldOutAlpha) + " (mean log MSE ratio " + fmt(pt.meanLogRatio) + ")";
