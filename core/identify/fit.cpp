@@ -4,12 +4,12 @@
 // fit_internal.hpp; the standard errors at the optimum in fit_uncertainty.cpp.
 #include "fit.hpp"
 
-#include <cstdio>
 #include <ceres/ceres.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <random>

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "fit_internal.hpp"
+
 namespace stickslip::identify {
 
 std::string htmlEscape(const std::string& s) {
@@ -23,12 +25,8 @@ std::string htmlEscape(const std::string& s) {
 
 namespace {
 
-std::string fmt(double v, const char* f = "%.4g") {
-    if (!std::isfinite(v)) return "&ndash;";
-    char b[64];
-    std::snprintf(b, sizeof b, f, v);
-    return b;
-}
+// The message formatter, with a dash for a number that is not there.
+std::string fmt(double v, const char* f = "%.4g") { return std::isfinite(v) ? detail::fmt(v, f) : "&ndash;"; }
 
 // 1–2–5 tick step covering `span` in about n ticks.
 double niceStep(double span, int n) {
