@@ -378,9 +378,25 @@ void MainWindow::dragEnterEvent(QDragEnterEvent* e) {
     if (e->mimeData()->hasUrls()) e->acceptProposedAction();
 }
 
+// A session (.json) opens; one measured file is overlaid on the plots; several measured files
+// are runs of one dataset, so they go to the Identify panel's import, as "Open measured runs…"
+// does. The import dialog is modal: it opens after the drop has returned, not inside it.
 void MainWindow::dropEvent(QDropEvent* e) {
-    for (const QUrl& u : e->mimeData()->urls())
-        if (u.isLocalFile()) openFile(u.toLocalFile());
+    QStringList measured;
+    for (const QUrl& u : e->mimeData()->urls()) {
+        if (!u.isLocalFile()) continue;
+        const QString path = u.toLocalFile();
+        if (QFileInfo(path).suffix().compare("json", Qt::CaseInsensitive) == 0) loadSessionFrom(path);
+        else measured << path;
+    }
+    if (measured.size() == 1) {
+        openMeasured(measured.front());
+    } else if (measured.size() > 1) {
+        QTimer::singleShot(0, this, [this, measured] {
+            showIdentify();
+            identify_->openImport(measured);
+        });
+    }
     e->acceptProposedAction();
 }
 

@@ -1,6 +1,7 @@
 // The real main window, offscreen: a slider change reaches the plots (compared with a direct
 // core run), presets switch, failures are reported in words, every view exports to PNG, SVG,
-// PDF and CSV, a measured CSV is overlaid by column name, and a session round-trips.
+// PDF and CSV, a measured CSV is overlaid by column name, several dropped CSVs open the Identify
+// import, and a session round-trips.
 #include <QComboBox>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
@@ -12,11 +13,13 @@
 #include <QSlider>
 #include <QTabBar>
 #include <QTemporaryDir>
+#include <QTimer>
 #include <QtTest>
 #include <qwt_plot_curve.h>
 #include <cmath>
 
 #include "command_line.hpp"
+#include "import_dialog.hpp"
 #include "core/integrate/simulate.hpp"
 #include "main_window.hpp"
 #include "parameter_panel.hpp"
@@ -346,6 +349,45 @@ private slots:
         QVERIFY(drop.isAccepted());
         QVERIFY(w->views()->timeSeries()->curve("measured: stage_disp_m"));
         w->views()->clearMeasured();
+    }
+
+    // Several measured files dropped on the window are runs of one dataset: they open the
+    // Identify panel's import with all of them (not an overlay of each in turn).
+    void severalDroppedFilesGoToTheImport() {
+        QTemporaryDir dir;
+        QStringList paths;
+        for (const char* name : {"run_01.csv", "run_02.csv"}) {
+            paths << dir.filePath(name);
+            QFile f(paths.back());
+            QVERIFY(f.open(QIODevice::WriteOnly));
+            f.write("time_s,stage_disp_m,friction_force_N\n0,0,0\n0.1,0.001,1.55\n0.2,0,-1.55\n");
+        }
+        w->views()->clearMeasured();
+        w->dock("identify")->hide();
+        QStringList shown;
+        bool wasModal = false;
+        // The import dialog is modal: read it and close it from inside its own event loop.
+        QTimer poll;
+        poll.setInterval(20);
+        connect(&poll, &QTimer::timeout, [&] {
+            if (auto* d = qobject_cast<ImportDialog*>(QApplication::activeModalWidget())) {
+                shown = d->files();
+                wasModal = true;
+                d->reject();
+            }
+        });
+        poll.start();
+        QMimeData mime;
+        mime.setUrls({QUrl::fromLocalFile(paths[0]), QUrl::fromLocalFile(paths[1])});
+        QDropEvent drop(QPointF(200, 200), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+        static_cast<QObject*>(w)->event(&drop);
+        QVERIFY(drop.isAccepted());
+        QTRY_VERIFY_WITH_TIMEOUT(wasModal, 20000);
+        poll.stop();
+        QCOMPARE(shown, paths);
+        QVERIFY(w->dock("identify")->isVisible());
+        // Nothing was overlaid on the plots.
+        QVERIFY(!w->views()->timeSeries()->curve("measured: stage_disp_m"));
     }
 
     void sessionSaveAndLoad() {
