@@ -1,12 +1,16 @@
 #include "import_columns_page.hpp"
 
+#include <algorithm>
+
 #include <QComboBox>
+#include <QFontMetrics>
 #include <QFileInfo>
 #include <QGridLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QStyle>
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <map>
@@ -201,6 +205,7 @@ void ImportColumnsPage::showPreview(const FilePreview* p, bool haveFiles) {
         }
     }
     preview_->resizeColumnsToContents();
+    fitHeaderWidths();
     QString caption = tr("<b>%1</b>: %2 data rows \u00d7 %3 columns; first %4 shown (row labels are file lines).")
                           .arg(name.toHtmlEscaped())
                           .arg(p->rowCount)
@@ -231,6 +236,24 @@ void ImportColumnsPage::fillPreviewHeader(const FilePreview& p) {
         h->setFont(font);
         if (!used) h->setForeground(palette().brush(QPalette::Disabled, QPalette::Text));
         preview_->setHorizontalHeaderItem(j, h);
+    }
+}
+
+// The header's own size hint measures a label in the header's font, but the style paints it bold
+// (the mapped columns, and any header of a selected column): each column is widened to its label's
+// lines in bold plus the style's margins, so no header is clipped.
+void ImportColumnsPage::fitHeaderWidths() {
+    QHeaderView* header = preview_->horizontalHeader();
+    QFont bold = header->font();
+    bold.setBold(true);
+    const QFontMetrics fm(bold);
+    const int margin = 2 * header->style()->pixelMetric(QStyle::PM_HeaderMargin, nullptr, header) + fm.averageCharWidth();
+    for (int j = 0; j < preview_->columnCount(); ++j) {
+        const QTableWidgetItem* h = preview_->horizontalHeaderItem(j);
+        if (!h) continue;
+        int text = 0;
+        for (const QString& line : h->text().split(QLatin1Char('\n'))) text = std::max(text, fm.horizontalAdvance(line));
+        if (preview_->columnWidth(j) < text + margin) preview_->setColumnWidth(j, text + margin);
     }
 }
 

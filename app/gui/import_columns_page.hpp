@@ -47,6 +47,7 @@ private:
     QWidget* buildPreviewBox();
     void columnChosen(io::Signal s);
     void fillPreviewHeader(const FilePreview& p);
+    void fitHeaderWidths();
 
     std::array<QComboBox*, io::kSignalCount> columnCombos_{};
     std::array<QComboBox*, io::kSignalCount> unitCombos_{};

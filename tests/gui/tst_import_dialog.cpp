@@ -5,6 +5,8 @@
 // raw-versus-cleaned plot shows exactly what preprocessRun produces.
 #include <QDir>
 #include <QFile>
+#include <QFontMetrics>
+#include <QHeaderView>
 #include <QLabel>
 #include <QPushButton>
 #include <QSignalSpy>
@@ -107,6 +109,14 @@ private slots:
         QVERIFY(t->horizontalHeaderItem(3)->text().startsWith("friction_force_N"));
         QVERIFY(t->horizontalHeaderItem(3)->text().contains(QStringLiteral("\u2192 F")));
         QCOMPARE(t->item(49, 1)->text().toDouble(), table.columns[1][49]);
+        // Every header fits its column in bold (the style paints mapped headers bold).
+        QFont bold = t->horizontalHeader()->font();
+        bold.setBold(true);
+        const QFontMetrics fm(bold);
+        for (int j = 0; j < t->columnCount(); ++j)
+            for (const QString& line : t->horizontalHeaderItem(j)->text().split('\n'))
+                QVERIFY2(t->columnWidth(j) > fm.horizontalAdvance(line),
+                         qPrintable(line + ": " + QString::number(t->columnWidth(j)) + " px"));
 
         // OK loads exactly what io::loadDataset loads with the dialog's options.
         d.accept();
