@@ -302,8 +302,12 @@ bool MainWindow::openMeasured(const QString& path, QString* error) {
     return true;
 }
 
+namespace {
+bool isSessionFile(const QString& path) { return QFileInfo(path).suffix().compare("json", Qt::CaseInsensitive) == 0; }
+}  // namespace
+
 bool MainWindow::openFile(const QString& path, QString* error) {
-    if (QFileInfo(path).suffix().compare("json", Qt::CaseInsensitive) == 0) return loadSessionFrom(path, error);
+    if (isSessionFile(path)) return loadSessionFrom(path, error);
     return openMeasured(path, error);
 }
 
@@ -386,7 +390,7 @@ void MainWindow::dropEvent(QDropEvent* e) {
     for (const QUrl& u : e->mimeData()->urls()) {
         if (!u.isLocalFile()) continue;
         const QString path = u.toLocalFile();
-        if (QFileInfo(path).suffix().compare("json", Qt::CaseInsensitive) == 0) loadSessionFrom(path);
+        if (isSessionFile(path)) loadSessionFrom(path);
         else measured << path;
     }
     if (measured.size() == 1) {
