@@ -87,6 +87,7 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
               << "\nafter:  fit NRMSE " << res.after.fitNrmse << ", held-out NRMSE " << res.after.validationNrmse
               << "\nunexplained structure: " << (res.unexplained ? "yes" : "no") << "\nwall time " << res.wallTime_s
               << " s, " << res.fits << " fits\n";
+    if (const std::string t = lawResolutionText(res.lawResolution); !t.empty()) std::cout << "warning: " << t << "\n";
     for (const BoundVerdict& b : res.baselineBounds)
         std::cout << "baseline " << b.name << " ended on its " << b.side << " bound " << b.bound << ": "
                   << b.verdict() << " (a second start from " << b.retryStart << " ended at " << b.retryValue

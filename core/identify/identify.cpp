@@ -457,6 +457,11 @@ void finishReport(Loop& L) {
     std::vector<std::vector<double>> predAfter;
     res.diagnosticsAfter = diagnoseModel(L.cx, L.spec, L.cur, &predAfter);
     res.unexplained = res.diagnosticsAfter.whiteness.structured;
+    if (!L.spec.segments) {
+        double mass = kNaN;
+        res.lawResolution = checkLawResolution(L.cx, buildModel(L.cx, L.spec, L.cur.values, mass), mass,
+                                               kLawResolutionRefinement);
+    }
     if (res.unexplained) {
         const auto& cs = res.diagnosticsAfter.correlations;
         auto top = std::max_element(cs.begin(), cs.end(), [](const auto& a, const auto& b) {
@@ -468,6 +473,7 @@ void finishReport(Loop& L) {
                                 fmt(res.diagnosticsAfter.whiteness.structureRatio) + "); largest correlation: " +
                                 (top != cs.end() ? top->signal + " r = " + fmt(top->correlation) : "none") +
                                 "; no catalogue candidate lowered the penalised and held-out error further";
+        if (const std::string t = lawResolutionText(res.lawResolution); !t.empty()) res.unexplainedReason += "; " + t;
     }
     for (size_t i = 0; i < L.cx.runs.size(); ++i) {
         const Prepared& p = L.cx.runs[i];

@@ -22,6 +22,7 @@
 // large (Whiteness::structured in diagnostics.hpp).
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -376,6 +377,27 @@ struct BoundVerdict {
     }
 };
 
+// Whether the final model's law channel is resolved in time at the step the fits used: the law
+// run again with every step split in `refinement`, its prediction (through the same cleaning
+// filters) compared on the compared samples with the one the fits saw, against the residual's
+// white-noise level (successive differences, von Neumann). A contact that is unstable under its
+// own law (soft ε_T, small D_c and η: self-excited oscillation at ~V/D_c) can need steps of a few
+// µs; then the residual holds the model's own discretisation error, not a missing effect.
+struct LawResolution {
+    struct Run {
+        std::string file;
+        double change_N = 0;  // RMS of (refined − used) prediction over the compared samples [N]
+        double noise_N = 0;   // the residual's white-noise level there [N]
+        bool resolved() const { return !(change_N > noise_N); }
+    };
+    bool checked = false;   // false: segment residual, or a law run failed
+    int refinement = 0;
+    std::vector<Run> runs;
+    bool resolved() const {
+        return std::all_of(runs.begin(), runs.end(), [](const Run& r) { return r.resolved(); });
+    }
+};
+
 struct IdentifyResult {
     bool ok = false;
     bool cancelled = false;
@@ -391,6 +413,7 @@ struct IdentifyResult {
     Diagnostics diagnosticsBefore, diagnosticsAfter;
     bool unexplained = false;
     std::string unexplainedReason;
+    LawResolution lawResolution;  // of the final model
     std::vector<RunTrace> traces;
     double wallTime_s = 0;
     long fits = 0;
@@ -429,5 +452,8 @@ std::string baselineTradeOffText(const CandidateScore& c);
 // A candidate's verdict as the reports show it: "added" or why not, and, if its size trades off
 // with a baseline parameter, that too.
 std::string verdictOf(const CandidateScore& c);
+// What the report says of an unresolved law channel (the runs whose prediction changes by more
+// than their noise level, and what to do); empty when resolved or not checked.
+std::string lawResolutionText(const LawResolution& r);
 
 }  // namespace stickslip::identify

@@ -145,7 +145,9 @@ bool segmentResiduals(const Context& cx, const Prepared& p, const ExtendedModel&
 struct LawRun {
     std::vector<double> contactForce_N, relVel_mps, accel_mps2;
 };
-bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m, LawRun& out);
+// refinement > 1: every law step split into that many (the check of the law's time resolution,
+// law_resolution.cpp).
+bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m, LawRun& out, int refinement = 1);
 bool lawParameter(const std::string& name);
 // Residuals of one run appended to `r` (see identify_residuals.cpp); with `law`, the law run
 // computed by simulateLawRun for a model with the same law parameters is used instead of a new
@@ -153,6 +155,10 @@ bool lawParameter(const std::string& name);
 bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, double mass, std::vector<double>& r,
                   double& ss, double& count, std::vector<double>* predicted, std::vector<char>* used,
                   std::vector<double>* frictionResidual, bool segments, const LawRun* law = nullptr);
+// The final model's law channel with every law step split in `refinement` (>= 2), against the
+// one the fits used, run by run (identify.hpp, LawResolution); unchecked when a run fails.
+constexpr int kLawResolutionRefinement = 8;
+LawResolution checkLawResolution(const Context& cx, const ExtendedModel& m, double mass, int refinement);
 size_t residualCount(const Context& cx, const std::vector<size_t>& idx);
 bool residualVector(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                     const std::vector<size_t>& idx, std::vector<double>& r, std::vector<NoiseBlock>* blocks = nullptr);

@@ -208,6 +208,14 @@ nlohmann::json toJson(const IdentifyResult& r) {
     j["diagnostics"] = {{"before", toJson(r.diagnosticsBefore, true)}, {"after", toJson(r.diagnosticsAfter, true)}};
     j["unexplained"] = r.unexplained;
     if (r.unexplained) j["unexplained_reason"] = r.unexplainedReason;
+    if (r.lawResolution.checked) {
+        nlohmann::json runs = nlohmann::json::array();
+        for (const LawResolution::Run& x : r.lawResolution.runs)
+            runs.push_back({{"file", x.file}, {"change_N", x.change_N}, {"noise_N", x.noise_N}, {"resolved", x.resolved()}});
+        j["law_resolution"] = {{"refinement", r.lawResolution.refinement},
+                               {"resolved", r.lawResolution.resolved()},
+                               {"runs", runs}};
+    }
     j["selection"] = selectionJson(r);
     j["wall_time_s"] = r.wallTime_s;
     j["fits"] = r.fits;
@@ -222,6 +230,24 @@ std::string baselineTradeOffText(const CandidateScore& c) {
     std::snprintf(r, sizeof r, "%.3f", it != c.sizeCorrelation.end() ? it->second : 0.0);
     return "its size trades off with the baseline's " + c.tradesOffWithBaseline + " (correlation " + r +
            "): the data cannot tell the two apart";
+}
+
+std::string lawResolutionText(const LawResolution& r) {
+    if (!r.checked || r.resolved()) return {};
+    std::string runs;
+    for (const LawResolution::Run& x : r.runs) {
+        if (x.resolved()) continue;
+        char b[160];
+        std::snprintf(b, sizeof b, "%s%s %.3g N against %.3g N", runs.empty() ? "" : ", ", x.file.c_str(), x.change_N,
+                      x.noise_N);
+        runs += b;
+    }
+    return "the law channel is not resolved at the fits' step: with every law step split in " +
+           std::to_string(r.refinement) + " the final model's prediction changes by more than the residual's noise level (" +
+           runs + "), so part of the residual is the model's own discretisation error, not a missing effect (a soft "
+           "contact that is unstable under its own law, small D_c and eta, oscillates at about V/D_c, and no step "
+           "short of the data's own resolves it); run again with more --substeps or --decimate 1 and see whether "
+           "the structure stays";
 }
 
 std::string verdictOf(const CandidateScore& c) {

@@ -133,14 +133,39 @@ ExtendedModel lawChannelModel(const Prepared& p, const ExtendedModel& m) {
 
 }  // namespace
 
-bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m, LawRun& out) {
+namespace {
+
+// Each law step of the run split into `refinement` equal steps, the slip linear within a step
+// (between its recorded end points where the run has them).
+std::vector<double> refinedStepSlip(const Prepared& p, int substeps, int refinement) {
+    std::vector<double> out;
+    if (p.stepSlip.empty() || refinement <= 1) return out;
+    out.reserve(p.stepSlip.size() * static_cast<size_t>(refinement));
+    for (size_t i = 1; i < p.size(); ++i) {
+        for (int k = 0; k < substeps; ++k) {
+            const size_t j = (i - 1) * static_cast<size_t>(substeps) + static_cast<size_t>(k);
+            const double a = k > 0 ? p.stepSlip[j - 1] : p.g[i - 1], b = p.stepSlip[j];
+            for (int q = 1; q <= refinement; ++q) out.push_back(a + (b - a) * q / refinement);
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m, LawRun& out, int refinement) {
+    refinement = std::max(1, refinement);
     RunContext ctx{p.run->normalForce_N, p.run->slipBefore_m};
     // A run cut out of a longer recording (IdentifyRun::cutFromRecording) is loaded at its first
     // sample: the law starts from the measured force there, not from rest, which would
     // mispredict the first half-stroke by up to 2 μ t_N.
     if (p.run->cutFromRecording && !p.F.empty()) ctx.initialForce_N = p.F.front();
+    const int sub = cx.opt->substeps;
+    const std::vector<double> fine = refinedStepSlip(p, sub, refinement);
+    const std::vector<double>* steps = refinement > 1 ? (fine.empty() ? nullptr : &fine)
+                                                      : (p.stepSlip.empty() ? nullptr : &p.stepSlip);
     ExtendedTrace tr = simulateExtendedPrescribed(lawChannelModel(p, m), ctx, p.t, p.g, p.a.empty() ? nullptr : &p.a,
-                                                  cx.opt->substeps, {}, p.stepSlip.empty() ? nullptr : &p.stepSlip);
+                                                  sub * refinement, {}, steps);
     if (!tr.ok()) return false;
     out.contactForce_N = std::move(tr.contactForce_N);
     out.relVel_mps = std::move(tr.relVel_mps);

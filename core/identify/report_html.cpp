@@ -147,6 +147,8 @@ void writeSummary(std::ostream& o, const IdentifyResult& r) {
              "successive-difference noise variance &minus; 1 = "
           << fmt(r.diagnosticsAfter.whiteness.structureRatio, "%.3f") << " &le; " << Whiteness::kStructureRatioLimit
           << ").</p>\n";
+    if (const std::string t = lawResolutionText(r.lawResolution); !t.empty() && !r.unexplained)
+        o << "<p class=\"warn\">Numerical resolution: " << htmlEscape(t) << ".</p>\n";
     o << "<table><tr><th></th><th>fit NRMSE</th><th>held-out NRMSE</th></tr>"
       << "<tr><td class=l>before (baseline)</td><td>" << fmt(r.before.fitNrmse) << "</td><td>" << fmt(r.before.validationNrmse)
       << "</td></tr><tr><td class=l>after</td><td>" << fmt(r.after.fitNrmse) << "</td><td>" << fmt(r.after.validationNrmse)

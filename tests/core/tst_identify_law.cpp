@@ -175,6 +175,15 @@ private slots:
               r.diagnosticsAfter.whiteness.structureRatio, r.after.fitNrmse);
         QVERIFY2(!r.unexplained, r.unexplainedReason.c_str());
         QVERIFY(!toJson(r)["unexplained"].get<bool>());
+        // The law channel is resolved at this step: 8x finer steps change the prediction by less
+        // than the residual's noise level, run by run, and the report says so.
+        QVERIFY(r.lawResolution.checked);
+        QVERIFY(!r.lawResolution.runs.empty());
+        for (const LawResolution::Run& x : r.lawResolution.runs)
+            QVERIFY2(x.resolved() && x.noise_N > 0.0, qPrintable(QString("%1: change %2 N, noise %3 N")
+                                                                     .arg(x.file.c_str()).arg(x.change_N).arg(x.noise_N)));
+        QVERIFY(toJson(r)["law_resolution"]["resolved"].get<bool>());
+        QVERIFY(lawResolutionText(r.lawResolution).empty());
     }
     // The effect is in the data but not among the candidates: the loop must not claim one of
     // the others for it, and must report the structure that remains.
