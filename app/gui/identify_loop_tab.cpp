@@ -184,11 +184,16 @@ void IdentifyLoopTab::showOutcome(const IdentifyOutcome& o) {
     setStatus(tr("Done in %1 s (%2 fits, %3 set-up). Effects added: %4.")
                   .arg(s, 0, 'f', 1).arg(r.fits).arg(QString::fromStdString(r.setup),
                        added.isEmpty() ? tr("none") : added.join(", ")));
+    // The resolution warning is part of the unexplained reason when there is one; else on its own.
+    const QString resolution = QString::fromStdString(lawResolutionText(r.lawResolution));
+    const bool warn = r.unexplained || !resolution.isEmpty();
     if (r.unexplained)
         unexplained_->setText(tr("<b>Unexplained structure remains</b>: %1").arg(QString::fromStdString(r.unexplainedReason).toHtmlEscaped()));
+    else if (!resolution.isEmpty())
+        unexplained_->setText(tr("<b>Numerical resolution</b>: %1").arg(resolution.toHtmlEscaped()));
     else
         unexplained_->setText(tr("<b>No unexplained structure</b>: the final residual looks like noise."));
-    unexplained_->setStyleSheet(r.unexplained ? "QLabel { color: #9a5b00; }" : "QLabel { color: #2a6b2a; }");
+    unexplained_->setStyleSheet(warn ? "QLabel { color: #9a5b00; }" : "QLabel { color: #2a6b2a; }");
     showBeforeAfter(r, added);
     showEffects(r);
     showCandidates(r);

@@ -335,7 +335,11 @@ private slots:
         for (size_t i = 0; i < core.candidates.size(); ++i)  // the reports' verdict text, trade-offs included
             QCOMPARE(cell(p.candidateTable(), static_cast<int>(i), 4), QString::fromStdString(verdictOf(core.candidates[i])));
         QCOMPARE(p.effectsTable()->rowCount(), static_cast<int>(core.effectsAdded.size()));
-        QVERIFY(p.unexplainedLabel()->text().contains(core.unexplained ? "Unexplained" : "No unexplained"));
+        const bool unresolved = !lawResolutionText(core.lawResolution).empty();
+        QVERIFY(p.unexplainedLabel()->text().contains(core.unexplained ? "Unexplained"
+                                                      : unresolved     ? "Numerical resolution"
+                                                                       : "No unexplained"));
+        if (unresolved) QVERIFY(p.unexplainedLabel()->text().contains("not resolved"));
         QVERIFY(p.overlayPlot()->seriesCount() >= 2);
 
         checkReportExport(p, core);
