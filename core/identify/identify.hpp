@@ -381,8 +381,10 @@ struct BoundVerdict {
 // run again with every step split in `refinement`, its prediction (through the same cleaning
 // filters) compared on the compared samples with the one the fits saw, against the residual's
 // white-noise level (successive differences, von Neumann). A contact that is unstable under its
-// own law (soft ε_T, small D_c and η: self-excited oscillation at ~V/D_c) can need steps of a few
-// µs; then the residual holds the model's own discretisation error, not a missing effect.
+// own law (its critical stiffness t_N (C1 C2 e^{−C2 V} − η) V / D_c above ε_T over a band of slip
+// rates: a soft contact with small D_c and η, or a fitted C1 C2 far above η) oscillates at a rate
+// the step sets; then the fitted prediction is the step's and the residual holds the model's own
+// discretisation error, not a missing effect (docs/identify-results.md, session 48).
 struct LawResolution {
     struct Run {
         std::string file;

@@ -244,10 +244,10 @@ std::string lawResolutionText(const LawResolution& r) {
     }
     return "the law channel is not resolved at the fits' step: with every law step split in " +
            std::to_string(r.refinement) + " the final model's prediction changes by more than the residual's noise level (" +
-           runs + "), so part of the residual is the model's own discretisation error, not a missing effect (a soft "
-           "contact that is unstable under its own law, small D_c and eta, oscillates at about V/D_c, and no step "
-           "short of the data's own resolves it); run again with more --substeps or --decimate 1 and see whether "
-           "the structure stays";
+           runs + "): the fitted prediction is the step's, not the law's, and part of the residual may be numerical "
+           "rather than a missing effect (a contact whose strength falls with slip rate faster than its viscous "
+           "term and its stiffness can hold is unstable under its own law and oscillates at a rate the step sets); "
+           "run again with more --substeps or --decimate 1 and see whether the fit and the structure stay";
 }
 
 std::string verdictOf(const CandidateScore& c) {
