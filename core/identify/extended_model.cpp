@@ -38,12 +38,8 @@ LawState ExtendedLaw::initialState(const RunContext& ctx) const {
     LawState s;
     s.aux[0] = ctx.accumulatedSlipStart_m;
     const bool loaded = std::isfinite(ctx.initialForce_N);
-    const double sg = loaded && ctx.initialForce_N < 0.0 ? -1.0 : 1.0;
-    s.aux[2] = ctx.normalForce_N * muEffective(s, sg, ctx.normalForce_N);
-    // Loaded at most to the strength (Eq. 1, Φ ≤ 0): a measured force above what the model's
-    // contact carries would be shed in the first step at the rate excess/(ε Δt), and through the
-    // rate weakening the whole first stroke would then depend on the step.
-    if (loaded) s.force_N = sg * std::min(std::abs(ctx.initialForce_N), std::max(0.0, lawStrength(s, sg, ctx.normalForce_N)));
+    if (loaded) s.force_N = ctx.initialForce_N;
+    s.aux[2] = ctx.normalForce_N * muEffective(s, s.force_N >= 0 ? 1.0 : -1.0, ctx.normalForce_N);
     if (loaded && fx.backlash) s.aux[3] = fx.backlash->loadedCoordinate(s.force_N, eps_N_per_m);
     return s;
 }

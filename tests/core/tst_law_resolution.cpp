@@ -6,7 +6,6 @@
 #include <cmath>
 #include <random>
 
-#include "core/identify/effects/registry.hpp"
 #include "core/identify/identify_internal.hpp"
 
 using namespace stickslip;
@@ -139,41 +138,6 @@ private slots:
                                 .arg(rms[0]).arg(rms[1]).arg(rms[2]).arg(rms[3]).arg(rms[4]);
         QVERIFY2(rms[3] < 0.013, qPrintable(msg));
         for (size_t k : {0, 1, 2, 4}) QVERIFY2(rms[k] > 0.1, qPrintable(msg));
-    }
-
-    // A run cut from a recording starts loaded at its first measured force. Where that force is
-    // above what the model's contact can carry (a misfit, e.g. the real damper's 36 lb runs under
-    // a symmetric law), the law used to shed the excess in its first step at the rate excess/ε/Δt,
-    // so the first half-cycle depended on the step through the rate-weakening (measured on the
-    // damper's fitted model: the force fell into the play with 8x finer steps, ~3 kN RMS change).
-    // The start is now on the yield surface: the run does not depend on the step.
-    void overloadedStartDoesNotDependOnTheStep() {
-        ExtendedModel m;
-        m.law.mu = 88.0;
-        m.law.C1 = 518.0;
-        m.law.r = 1.0;
-        m.law.Dc_m = 5.1e-3;
-        m.law.eta_s_per_m = 1e-4;
-        m.law.vc_mps = 10.0;
-        m.law.epsT_N_per_m = 6.6e6;
-        m.effects.backlash = Backlash{2.3e-3};
-        const double tN = 160.0, w = 2 * M_PI * 0.5, A = 0.0127;
-        std::vector<double> t, g;
-        for (int i = 0; i <= 500; ++i) {  // from the slip's minimum, 7 ms apart, for 3.5 s
-            t.push_back(i * 7e-3);
-            g.push_back(-A * std::cos(w * t.back()));
-        }
-        RunContext ctx;
-        ctx.normalForce_N = tN;
-        ctx.initialForce_N = -1.4 * tN * m.law.mu;  // 40 % above the strength t_N μ
-        const ExtendedTrace a = simulateExtendedPrescribed(m, ctx, t, g, nullptr, 2);
-        const ExtendedTrace b = simulateExtendedPrescribed(m, ctx, t, g, nullptr, 16);
-        QVERIFY(a.ok() && b.ok());
-        double worst = 0;
-        for (size_t i = 0; i < t.size(); ++i) worst = std::max(worst, std::abs(a.contactForce_N[i] - b.contactForce_N[i]));
-        QVERIFY2(worst < 0.01 * tN * m.law.mu, qPrintable(QString("largest difference %1 N").arg(worst)));
-        QVERIFY2(std::abs(a.contactForce_N[0]) <= tN * m.law.mu * (1 + 1e-12),
-                 qPrintable(QString("start %1 N, strength %2 N").arg(a.contactForce_N[0]).arg(tN * m.law.mu)));
     }
 
     // Without a run there is nothing to check: unchecked, and no text.
