@@ -247,7 +247,8 @@ std::string lawResolutionText(const LawResolution& r) {
            runs + "): the fitted prediction is the step's, not the law's, and part of the residual may be numerical "
            "rather than a missing effect (a contact whose strength falls with slip rate faster than its viscous "
            "term and its stiffness can hold is unstable under its own law and oscillates at a rate the step sets); "
-           "run again with more --substeps or --decimate 1 and see whether the fit and the structure stay";
+           "run again with more law steps (stickslip-cli identify --substeps N, or --decimate 1) and see whether the "
+           "fit and the structure stay";
 }
 
 std::string verdictOf(const CandidateScore& c) {

@@ -20,6 +20,7 @@
 #include "core/identify/fit.hpp"
 #include "core/identify/identify.hpp"
 #include "core/identify/preprocess.hpp"
+#include "identify_loop_tab.hpp"
 #include "identify_panel.hpp"
 #include "self_test_view.hpp"
 #include "main_window.hpp"
@@ -127,6 +128,29 @@ void checkReportExport(IdentifyPanel& p, const IdentifyResult& core) {
 class TestIdentifyPanel : public QObject {
     Q_OBJECT
 private slots:
+    // The loop tab words the law-resolution check as the reports do: its own warning when the
+    // residual is otherwise white, nothing when every run is resolved.
+    void loopTabShowsAnUnresolvedLawChannel() {
+        IdentifyLoopTab tab;
+        IdentifyOutcome o;
+        o.ok = true;
+        o.result.ok = true;
+        o.result.lawResolution.checked = true;
+        o.result.lawResolution.refinement = 8;
+        o.result.lawResolution.runs = {{"run_01.csv", 0.001, 0.02}, {"run_02.csv", 0.18, 0.046}};
+        tab.showOutcome(o);
+        QVERIFY2(tab.unexplainedLabel()->text().contains("Numerical resolution"), qPrintable(tab.unexplainedLabel()->text()));
+        QVERIFY(tab.unexplainedLabel()->text().contains("run_02.csv"));
+        QVERIFY(!tab.unexplainedLabel()->text().contains("run_01.csv"));
+        if (const QByteArray shot = qgetenv("LAW_RESOLUTION_SHOT"); !shot.isEmpty()) {
+            tab.resize(700, 900);
+            QVERIFY(tab.grab().save(QString::fromLocal8Bit(shot)));
+        }
+        o.result.lawResolution.runs[1].change_N = 0.01;
+        tab.showOutcome(o);
+        QVERIFY2(tab.unexplainedLabel()->text().contains("No unexplained"), qPrintable(tab.unexplainedLabel()->text()));
+    }
+
     void formatting() {
         QCOMPARE(formatEstimate(0.30123456, 0.0021), QStringLiteral("0.3012 ± 0.0021"));
         QCOMPARE(formatEstimate(0.3, 0.0), QStringLiteral("0.3"));
