@@ -336,6 +336,21 @@ private slots:
         QVERIFY(!has(page, "Recovery self-test"));  // it did not run
     }
 
+    // An unresolved law channel (LawResolution) is its own warning when the residual is otherwise
+    // white, with the same words as the JSON's and the CLI's lawResolutionText; nothing when resolved.
+    void pageWarnsOfAnUnresolvedLawChannel() {
+        IdentifyResult r = handMadeResult();
+        QVERIFY(!r.unexplained);
+        r.lawResolution.checked = true;
+        r.lawResolution.refinement = 8;
+        r.lawResolution.runs = {{"run_01.csv", 0.2, 0.05}};
+        const std::string page = renderHtmlReport(r);
+        QVERIFY(has(page, "<p class=\"warn\">Numerical resolution: " + htmlEscape(lawResolutionText(r.lawResolution)) + ".</p>"));
+        QVERIFY(tagProblem(page).empty());
+        r.lawResolution.runs[0].change_N = 0.01;
+        QVERIFY(!has(renderHtmlReport(r), "Numerical resolution"));
+    }
+
     // The selection rule is one text (selectionRule) with the settings the result was run with:
     // the HTML candidates table and the JSON report's selection.criterion give the same words.
     void ruleTextIsTheOneTheJsonGives() {
