@@ -9,9 +9,12 @@
 #include <qwt_plot_panner.h>
 #include <qwt_plot_picker.h>
 #include <qwt_plot_zoomer.h>
+#include <qwt_scale_widget.h>
 #include <qwt_symbol.h>
 
 #include <QFileInfo>
+#include <QFontMetrics>
+#include <QResizeEvent>
 #include <algorithm>
 #include <cmath>
 #include <QVBoxLayout>
@@ -243,7 +246,9 @@ void PlotWidget::widenDegenerateAxes() {
         box = any ? box.united(c->boundingRect()) : c->boundingRect();
         any = true;
     }
-    for (int axis : {int(QwtPlot::xBottom), int(QwtPlot::yLeft)}) plot_->setAxisMaxMajor(axis, kDefaultMajorTicks);
+    plot_->setAxisMaxMajor(QwtPlot::yLeft, kDefaultMajorTicks);
+    degenerateX_ = false;
+    applyXMajorTicks();
     if (!any) return;
     auto widen = [this](int axis, double lo, double hi, double minSpan) {
         const double centre = 0.5 * (lo + hi);
@@ -253,10 +258,39 @@ void PlotWidget::widenDegenerateAxes() {
         double half = 0.5 * minSpan;
         if (single) half = std::max(half, scale > 0 ? 1e-2 * scale : 1.0);
         plot_->setAxisScale(axis, centre - half, centre + half);
-        plot_->setAxisMaxMajor(axis, kDegenerateAxisMajorTicks);
+        if (axis == QwtPlot::xBottom) {
+            degenerateX_ = true;
+            applyXMajorTicks();
+        } else {
+            plot_->setAxisMaxMajor(axis, kDegenerateAxisMajorTicks);
+        }
     };
     widen(QwtPlot::xBottom, box.left(), box.right(), minSpan_[0]);
     widen(QwtPlot::yLeft, box.top(), box.bottom(), minSpan_[1]);
+}
+
+int PlotWidget::xMajorTicks() const {
+    const int cap = degenerateX_ ? kDegenerateAxisMajorTicks : kDefaultMajorTicks;
+    const QwtScaleWidget* bottom = plot_->axisWidget(QwtPlot::xBottom);
+    const QwtScaleWidget* left = plot_->axisWidget(QwtPlot::yLeft);
+    const QwtScaleWidget* right = plot_->axisWidget(QwtPlot::yRight);
+    // A label and a gap of half its width per interval, over the width the canvas gets.
+    const int label = QFontMetrics(bottom->font()).horizontalAdvance(QStringLiteral("-0.000"));
+    int span = width() - (left ? left->width() : 0);
+    if (right && plot_->axisEnabled(QwtPlot::yRight)) span -= right->width();
+    return std::clamp(span / std::max(1, label * 3 / 2), 2, cap);
+}
+
+void PlotWidget::applyXMajorTicks() {
+    const int n = xMajorTicks();
+    if (plot_->axisMaxMajor(QwtPlot::xBottom) == n) return;
+    plot_->setAxisMaxMajor(QwtPlot::xBottom, n);
+    plot_->replot();
+}
+
+void PlotWidget::resizeEvent(QResizeEvent* e) {
+    QWidget::resizeEvent(e);
+    applyXMajorTicks();
 }
 
 void PlotWidget::rescale() {

@@ -90,8 +90,14 @@ public slots:
     // Autoscale to the data and make that the zoom base.
     void rescale();
 
+    // Most major intervals on the bottom axis: as many as labels like "-0.000" fit side by
+    // side in the plot's width (at most Qwt's 8; 4 on a widened single-value axis), so the
+    // labels of a narrow dock do not run into each other.
+    int xMajorTicks() const;
+
 protected:
     void showEvent(QShowEvent* e) override;
+    void resizeEvent(QResizeEvent* e) override;
     // A curve of `law` (pen style by model) in `color`, attached on axis `yAxis`.
     QwtPlotCurve* addCurve(const QString& title, LawKind law, const QColor& color, int yAxis = 2 /*yLeft*/);
     QwtPlotCurve* addCurve(const QString& title, const QPen& pen, int yAxis = 2 /*yLeft*/);
@@ -125,7 +131,9 @@ protected:
     double minSpan_[2] = {0.0, 0.0};
 
 private:
+    void applyXMajorTicks();
     std::function<void()> pending_;
+    bool degenerateX_ = false;  // the bottom axis was widened around a single value
 };
 
 }  // namespace stickslip::widgets

@@ -130,11 +130,13 @@ void RigCanvas::paintEvent(QPaintEvent*) {
     p.setBrush(QColor(200, 215, 235));
     p.drawRect(block);
     p.setBrush(Qt::NoBrush);
-    p.drawText(block, Qt::AlignCenter, QStringLiteral("m*"));
+    // The label in the block's upper part: the friction arrow (below) runs through its middle.
+    p.drawText(QRectF(block.left(), block.top(), blockW, 0.45 * blockH), Qt::AlignCenter, QStringLiteral("m*"));
     drawSpring(p, groundX, block.left(), stageTop - 0.7 * blockH, 7, 7);
     drawDamper(p, groundX, block.left(), stageTop - 0.28 * blockH, 6);
     p.drawText(QPointF(0.5 * (groundX + block.left()) - 4, stageTop - 0.7 * blockH - 12), QStringLiteral("k"));
-    p.drawText(QPointF(0.5 * (groundX + block.left()) - 4, stageTop - 0.28 * blockH + 20), QStringLiteral("c"));
+    // Above the damper (below it the label would touch the stage's top edge).
+    p.drawText(QPointF(0.5 * (groundX + block.left()) - 4, stageTop - 0.28 * blockH - 9), QStringLiteral("c"));
 
     // Normal load t_N pressing the block down.
     drawArrow(p, QPointF(block.center().x(), block.top() - 32), QPointF(block.center().x(), block.top() - 2));

@@ -9,8 +9,10 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QLabel>
+#include <QLayout>
 #include <QMenuBar>
 #include <QMimeData>
+#include <QScreen>
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
@@ -54,7 +56,13 @@ MainWindow::MainWindow(bool restoreSettings, QWidget* parent) : QMainWindow(pare
     connect(controller_, &SimulationController::mapFinished, this, [this] { raiseView("map"); });
     connect(identify_, &IdentifyPanel::statusMessage, this, [this](const QString& m) { statusBar()->showMessage(m, 6000); });
 
-    resize(1280, 800);
+    // The minimum as laid out now: an earlier activation, while the Identify dock was still
+    // tabified in view, left the window's minimum at its width (1461 px), and resize() clamps
+    // to it. Then the default size, at most the screen's available area (1366×768 laptops).
+    layout()->activate();
+    QSize size(1280, 800);
+    if (const QScreen* sc = screen()) size = size.boundedTo(sc->availableGeometry().size());
+    resize(size);
     if (useSettings_) {
         QSettings st;
         restoreGeometry(st.value("window/geometry").toByteArray());

@@ -9,6 +9,7 @@
 #include <QDropEvent>
 #include <QFile>
 #include <QMimeData>
+#include <QScreen>
 #include <QSignalSpy>
 #include <QSlider>
 #include <QTabBar>
@@ -105,6 +106,19 @@ private slots:
         QVERIFY(w->statusText().contains("run "));
     }
     void cleanupTestCase() { delete w; }
+
+    // The window fits a 1280×800 laptop screen in its default layout: every dock's minimum
+    // together (the parameter panel beside the rig view and the plot tabs) is not wider or
+    // taller than the screen, so no part of it opens off-screen (seen: 1465 px wide).
+    void defaultLayoutFitsA1280x800Screen() {
+        const QSize min = w->minimumSizeHint().expandedTo(w->minimumSize());
+        QVERIFY2(min.width() <= 1280, qPrintable(QString("minimum width %1 px").arg(min.width())));
+        QVERIFY2(min.height() <= 800, qPrintable(QString("minimum height %1 px").arg(min.height())));
+        const QSize avail = w->screen()->availableGeometry().size();
+        QVERIFY2(w->width() <= std::min(1280, std::max(avail.width(), min.width())) &&
+                     w->height() <= std::min(800, std::max(avail.height(), min.height())),
+                 qPrintable(QString("size %1 x %2 px on a %3 x %4 px screen").arg(w->width()).arg(w->height()).arg(avail.width()).arg(avail.height())));
+    }
 
     // The plot views share one tabbed dock area: their tabs show whole titles and scroll,
     // also for a tab bar QMainWindow makes later (a view moved into another tab group).

@@ -75,6 +75,7 @@ private slots:
     void navigationToolsExist();
     void phasePortraitAndPoincare();
     void singlePointSectionHasReadableTickLabels();
+    void narrowLoopPlotHasReadableTickLabels();
     void sectionScatterBelowTheOrbitsResolutionIsOneDot();
     void loopOrientationMarksClockwise();
     void loopOrientationMarksCounterClockwise();
@@ -236,6 +237,36 @@ void TestWidgets::singlePointSectionHasReadableTickLabels() {
         QVERIFY2(labels < 0.8 * room, qPrintable(QString("axis %1: %2 tick labels need %3 px of %4")
                                                       .arg(axis).arg(ticks.size()).arg(labels).arg(room)));
     }
+}
+
+// The F/t_N–V loop in the app's default dock (~340 px wide) on the Fig. 20 preset: the bottom
+// axis's labels ("-0.04" … "0.04") do not run into each other (seen: "-0.04-0.03-0.02-0.01"),
+// and a wide plot keeps Qwt's eight intervals.
+void TestWidgets::narrowLoopPlotHasReadableTickLabels() {
+    Preset p;
+    QVERIFY(findPreset("fig20", p));
+    SimParams s = p.params;
+    s.cycles = 3;
+    const RunResult run = simulate(s);
+    QVERIFY2(run.ok(), run.message.c_str());
+    FrictionLoopPlot w;
+    w.resize(340, 330);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.setRun(run, s.drive.period());
+    QwtPlot* plot = w.plot();
+    plot->replot();
+    QCoreApplication::processEvents();
+    const QList<double> ticks = plot->axisScaleDiv(QwtPlot::xBottom).ticks(QwtScaleDiv::MajorTick);
+    QVERIFY(ticks.size() >= 3);
+    const QFont font = plot->axisWidget(QwtPlot::xBottom)->font();
+    double labels = 0;
+    for (double v : ticks) labels += plot->axisScaleDraw(QwtPlot::xBottom)->label(v).textSize(font).width();
+    const double room = plot->canvas()->width();
+    QVERIFY2(labels < 0.8 * room, qPrintable(QString("%1 tick labels need %2 px of %3").arg(ticks.size()).arg(labels).arg(room)));
+    w.resize(1000, 330);
+    QCoreApplication::processEvents();
+    QCOMPARE(w.xMajorTicks(), 8);
 }
 
 // The section of a periodic run computed at a tolerance scatters by the tolerance's order (Fig. 22
