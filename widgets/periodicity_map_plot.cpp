@@ -95,6 +95,7 @@ void PeriodicityMapPlot::setMap(const PeriodicityGrid& grid, const QString& xTit
                                 const QString& yTitle, double yFactor) {
     map_ = grid;
     setAxisTitles(xTitle, yTitle);
+    applyFonts();  // the other views' fonts (rescale() applies them there; the map sets its scales itself)
     setFactors(xFactor, yFactor);
     auto* data = new QwtMatrixRasterData;
     QVector<double> values;

@@ -483,6 +483,13 @@ void TestWidgets::periodicityMapShowsClasses() {
     QCOMPARE(data->value(3.0, 3.0), 2.0);
     QCOMPARE(data->value(1.0, 4.0), double(kMapIrregular));
     QCOMPARE(data->value(2.0, 4.0), 5.0);
+    // Titles in the fonts of the other views (seen: the map's axis titles bold and larger).
+    BifurcationPlot other;
+    other.appendColumn(SweepBranch::Up, 1e-3, {0.1e-3});
+    other.rescale();
+    for (int axis : {int(QwtPlot::xBottom), int(QwtPlot::yLeft)})
+        QCOMPARE(w.plot()->axisTitle(axis).font(), other.plot()->axisTitle(axis).font());
+    QCOMPARE(w.plot()->title().font(), other.plot()->title().font());
     // Every class reads apart from the others: periods 5–16 share one hue, darker with the
     // period, and none of them is near a colour of stick, period 1–4 or irregular.
     auto distance = [](const QColor& a, const QColor& b) {
