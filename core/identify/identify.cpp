@@ -19,31 +19,6 @@ namespace stickslip::identify {
 using namespace detail;
 using Clock = std::chrono::steady_clock;
 
-ParamIssues IdentifyOptions::validate() const {
-    ParamIssues out;
-    auto range = [&](const char* field, double v, bool ok, const char* allowed) {
-        if (!ok) out.push_back({field, v, allowed, {}});
-    };
-    range("max_effects", maxEffects, maxEffects >= 0, ">= 0");
-    range("multistarts", multistarts, multistarts >= 1, ">= 1");
-    range("confounded_vif", confoundedVif, confoundedVif > 1.0, "> 1");
-    range("bic_margin", bicMargin, bicMargin >= 0, ">= 0");
-    range("restart_margin", restartMargin, restartMargin >= 0, ">= 0");
-    range("null_alpha", nullAlpha, nullAlpha > 0 && nullAlpha < 1, "in (0, 1)");
-    range("null_replicas", nullReplicas, nullReplicas >= 0 && nullReplicas <= 100000, "in [0, 100000]");
-    range("simulated_null_replicas", simulatedNullReplicas, simulatedNullReplicas >= 0 && simulatedNullReplicas <= 1000,
-          "in [0, 1000]");
-    range("simulated_null_steps_per_sample", simulatedNullStepsPerSample,
-          simulatedNullStepsPerSample >= 1 && simulatedNullStepsPerSample <= 1000, "in [1, 1000]");
-    range("simulated_null_bias_steps", simulatedNullBiasSteps, simulatedNullBiasSteps >= 0 && simulatedNullBiasSteps <= 20,
-          "in [0, 20]");
-    range("held_out_alpha", heldOutAlpha, heldOutAlpha > 0 && heldOutAlpha < 1, "in (0, 1)");
-    range("min_held_out_gain", minHeldOutGain, minHeldOutGain >= 0 && minHeldOutGain < 1, "in [0, 1)");
-    range("identifiability_alpha", identifiabilityAlpha, identifiabilityAlpha > 0 && identifiabilityAlpha < 1, "in (0, 1)");
-    for (const ParamIssue& i : selfTest.validate()) out.push_back(i);
-    return out;
-}
-
 namespace {
 
 // Slip episodes in the fit runs (the independent units of the penalised criterion): one per
