@@ -248,8 +248,10 @@ void PlotWidget::widenDegenerateAxes() {
     }
     plot_->setAxisMaxMajor(QwtPlot::yLeft, kDefaultMajorTicks);
     degenerateX_ = false;
-    applyXMajorTicks();
-    if (!any) return;
+    if (!any) {
+        setXMajorTicks();
+        return;
+    }
     auto widen = [this](int axis, double lo, double hi, double minSpan) {
         const double centre = 0.5 * (lo + hi);
         const double scale = std::max(std::abs(lo), std::abs(hi));
@@ -258,15 +260,12 @@ void PlotWidget::widenDegenerateAxes() {
         double half = 0.5 * minSpan;
         if (single) half = std::max(half, scale > 0 ? 1e-2 * scale : 1.0);
         plot_->setAxisScale(axis, centre - half, centre + half);
-        if (axis == QwtPlot::xBottom) {
-            degenerateX_ = true;
-            applyXMajorTicks();
-        } else {
-            plot_->setAxisMaxMajor(axis, kDegenerateAxisMajorTicks);
-        }
+        if (axis == QwtPlot::xBottom) degenerateX_ = true;
+        else plot_->setAxisMaxMajor(axis, kDegenerateAxisMajorTicks);
     };
     widen(QwtPlot::xBottom, box.left(), box.right(), minSpan_[0]);
     widen(QwtPlot::yLeft, box.top(), box.bottom(), minSpan_[1]);
+    setXMajorTicks();
 }
 
 int PlotWidget::xMajorTicks() const {
@@ -281,16 +280,18 @@ int PlotWidget::xMajorTicks() const {
     return std::clamp(span / std::max(1, label * 3 / 2), 2, cap);
 }
 
-void PlotWidget::applyXMajorTicks() {
+bool PlotWidget::setXMajorTicks() {
     const int n = xMajorTicks();
-    if (plot_->axisMaxMajor(QwtPlot::xBottom) == n) return;
+    if (plot_->axisMaxMajor(QwtPlot::xBottom) == n) return false;
     plot_->setAxisMaxMajor(QwtPlot::xBottom, n);
-    plot_->replot();
+    return true;
 }
 
+// Callers of widenDegenerateAxes replot themselves; a resize alone replots only when the
+// number of intervals changed.
 void PlotWidget::resizeEvent(QResizeEvent* e) {
     QWidget::resizeEvent(e);
-    applyXMajorTicks();
+    if (setXMajorTicks()) plot_->replot();
 }
 
 void PlotWidget::rescale() {

@@ -131,7 +131,7 @@ protected:
     double minSpan_[2] = {0.0, 0.0};
 
 private:
-    void applyXMajorTicks();
+    bool setXMajorTicks();  // true when the bottom axis's interval count changed
     std::function<void()> pending_;
     bool degenerateX_ = false;  // the bottom axis was widened around a single value
 };
