@@ -504,12 +504,18 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
             for (int j = 0; j < 11; ++j)
                 for (double v : grid) pts.push_back({v, fp.name, lo * std::pow(hi / lo, j / 10.0)});
         }
+        // A point stops being evaluated once its partial sum passes the lowest full sum found so
+        // far (evalSS's abandonAbove): it cannot win, and the winner is the same whatever the
+        // threads' timing, because an abandoned point's partial sum is above a full one.
         std::vector<double> cs(pts.size(), std::numeric_limits<double>::infinity());
+        std::atomic<double> lowest{std::numeric_limits<double>::infinity()};
         parallelFor(pts.size(), [&](size_t k) {
             std::map<std::string, double> v = vals;
             v[key] = pts[k].v;
             if (!pts[k].partner.empty()) v[pts[k].partner] = pts[k].pv;
-            cs[k] = evalSS(cx, s2, v, idx);
+            cs[k] = evalSS(cx, s2, v, idx, lowest.load());
+            for (double seen = lowest.load(); cs[k] < seen && !lowest.compare_exchange_weak(seen, cs[k]);) {
+            }
         });
         size_t best = 0;  // the lowest wins (ties: the first, i.e. the current point)
         for (size_t k = 1; k < pts.size(); ++k)

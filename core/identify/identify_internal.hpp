@@ -179,7 +179,12 @@ bool numericsOffset(const Context& cx, const Spec& spec, const std::map<std::str
 Eigen::MatrixXd residualJacobian(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                                  const std::vector<size_t>& idx, const std::vector<FitParameter>& params,
                                  const std::vector<std::string>& which, size_t rows);
-double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx);
+// Sum of squared residuals of a model over the runs idx (inf if a run fails). With a finite
+// `abandonAbove` the sum stops after the first run that takes it above that value and returns the
+// partial sum: a lower bound of the full one and above abandonAbove, so a search for the lowest
+// point (a scan, a restart) that passes its best so far gets the same answer for less work.
+double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx,
+              double abandonAbove = std::numeric_limits<double>::infinity());
 // The residuals of model m over the runs idx, appended run after run to r (cleared first), and
 // their sum of squares and count added to ss and n; false where a run cannot be evaluated.
 bool residualsOver(const Context& cx, const Spec& spec, const std::vector<size_t>& idx, const ExtendedModel& m, double mass,

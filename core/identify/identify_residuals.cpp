@@ -390,12 +390,20 @@ bool residualsOver(const Context& cx, const Spec& spec, const std::vector<size_t
     return true;
 }
 
-// Sum of squared residuals of a model over the runs idx (inf if a run fails).
-double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx) {
-    double mass = kNaN, ss = 0, n = 0;
+double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx,
+              double abandonAbove) {
+    double mass = kNaN, ss = 0;
     const ExtendedModel m = buildModel(cx, spec, vals, mass);
     std::vector<double> r;
-    return residualsOver(cx, spec, idx, m, mass, r, ss, n) ? ss : std::numeric_limits<double>::infinity();
+    for (size_t i : idx) {
+        double ssRun = 0, nRun = 0;
+        r.clear();
+        if (!runResiduals(cx, cx.runs[i], m, mass, r, ssRun, nRun, nullptr, nullptr, nullptr, spec.segments))
+            return std::numeric_limits<double>::infinity();
+        ss += ssRun;
+        if (ss > abandonAbove) return ss;
+    }
+    return ss;
 }
 
 }  // namespace stickslip::identify::detail

@@ -32,7 +32,7 @@ RestartTry tryRestart(Loop& L, const Spec& spec, const FitOutcome& fit, const st
     RestartTry r;
     r.bestSS = fit.ss * (1.0 - 1e-6);
     for (size_t i = 0; i < points.size(); ++i) {
-        const double ss = evalSS(L.cx, spec, points[i], L.fitIdx);
+        const double ss = evalSS(L.cx, spec, points[i], L.fitIdx, r.bestSS);
         if (std::isfinite(ss) && ss < r.bestSS) r.bestSS = ss, r.best = static_cast<int>(i);
     }
     if (r.best < 0) return r;
