@@ -504,22 +504,13 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
             for (int j = 0; j < 11; ++j)
                 for (double v : grid) pts.push_back({v, fp.name, lo * std::pow(hi / lo, j / 10.0)});
         }
-        // A point stops being evaluated once its partial sum passes the lowest full sum found so
-        // far (evalSS's abandonAbove): it cannot win, and the winner is the same whatever the
-        // threads' timing, because an abandoned point's partial sum is above a full one.
-        std::vector<double> cs(pts.size(), std::numeric_limits<double>::infinity());
-        std::atomic<double> lowest{std::numeric_limits<double>::infinity()};
-        parallelFor(pts.size(), [&](size_t k) {
-            std::map<std::string, double> v = vals;
-            v[key] = pts[k].v;
-            if (!pts[k].partner.empty()) v[pts[k].partner] = pts[k].pv;
-            cs[k] = evalSS(cx, s2, v, idx, lowest.load());
-            for (double seen = lowest.load(); cs[k] < seen && !lowest.compare_exchange_weak(seen, cs[k]);) {
-            }
-        });
-        size_t best = 0;  // the lowest wins (ties: the first, i.e. the current point)
-        for (size_t k = 1; k < pts.size(); ++k)
-            if (cs[k] < cs[best]) best = k;
+        std::vector<std::map<std::string, double>> points(pts.size(), vals);
+        for (size_t k = 0; k < pts.size(); ++k) {
+            points[k][key] = pts[k].v;
+            if (!pts[k].partner.empty()) points[k][pts[k].partner] = pts[k].pv;
+        }
+        // The lowest wins (ties: the first, i.e. the current point); none evaluable: the current.
+        const size_t best = static_cast<size_t>(std::max(0, lowestSS(cx, s2, points, idx)));
         vals[key] = pts[best].v;
         if (!pts[best].partner.empty()) vals[pts[best].partner] = pts[best].pv;
     }

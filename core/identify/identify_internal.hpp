@@ -179,12 +179,18 @@ bool numericsOffset(const Context& cx, const Spec& spec, const std::map<std::str
 Eigen::MatrixXd residualJacobian(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                                  const std::vector<size_t>& idx, const std::vector<FitParameter>& params,
                                  const std::vector<std::string>& which, size_t rows);
-// Sum of squared residuals of a model over the runs idx (inf if a run fails). With a finite
-// `abandonAbove` the sum stops after the first run that takes it above that value and returns the
-// partial sum: a lower bound of the full one and above abandonAbove, so a search for the lowest
-// point (a scan, a restart) that passes its best so far gets the same answer for less work.
-double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx,
-              double abandonAbove = std::numeric_limits<double>::infinity());
+// Sum of squared residuals of a model over the runs idx (inf if a run fails).
+double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx);
+// The point of `points` (the model `spec` at each) with the lowest full sum of squares over the
+// runs idx, and only one below `below` counts (−1: none; ties: the first). Evaluated with as
+// little work as that answer needs: every point on the first run, then the points in the order
+// of that partial sum, each stopped once its partial sum passes the lowest full sum so far. A
+// stopped point's sum is above a full one, so the answer is the exhaustive one whatever the
+// threads' timing. `sums` (if given) receives the full sums, and for stopped points the partial
+// sum that stopped them (a lower bound above the answer's).
+int lowestSS(const Context& cx, const Spec& spec, const std::vector<std::map<std::string, double>>& points,
+             const std::vector<size_t>& idx, double below = std::numeric_limits<double>::infinity(),
+             std::vector<double>* sums = nullptr);
 // The residuals of model m over the runs idx, appended run after run to r (cleared first), and
 // their sum of squares and count added to ss and n; false where a run cannot be evaluated.
 bool residualsOver(const Context& cx, const Spec& spec, const std::vector<size_t>& idx, const ExtendedModel& m, double mass,

@@ -390,20 +390,60 @@ bool residualsOver(const Context& cx, const Spec& spec, const std::vector<size_t
     return true;
 }
 
-double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx,
-              double abandonAbove) {
-    double mass = kNaN, ss = 0;
+// Sum of squared residuals of a model over the runs idx (inf if a run fails).
+double evalSS(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals, const std::vector<size_t>& idx) {
+    double mass = kNaN, ss = 0, n = 0;
     const ExtendedModel m = buildModel(cx, spec, vals, mass);
     std::vector<double> r;
-    for (size_t i : idx) {
+    return residualsOver(cx, spec, idx, m, mass, r, ss, n) ? ss : std::numeric_limits<double>::infinity();
+}
+
+int lowestSS(const Context& cx, const Spec& spec, const std::vector<std::map<std::string, double>>& points,
+             const std::vector<size_t>& idx, double below, std::vector<double>* sums) {
+    const size_t n = points.size();
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    std::vector<double> ss(n, kInf);
+    std::vector<size_t> runsDone(n, 0);
+    std::vector<ExtendedModel> models(n);
+    std::vector<double> masses(n, kNaN);
+    // Adds run j's sum to point k's (in idx order, as evalSS adds them); false if it fails.
+    auto addRun = [&](size_t k, size_t j) {
         double ssRun = 0, nRun = 0;
-        r.clear();
-        if (!runResiduals(cx, cx.runs[i], m, mass, r, ssRun, nRun, nullptr, nullptr, nullptr, spec.segments))
-            return std::numeric_limits<double>::infinity();
-        ss += ssRun;
-        if (ss > abandonAbove) return ss;
-    }
-    return ss;
+        std::vector<double> r;
+        if (!runResiduals(cx, cx.runs[idx[j]], models[k], masses[k], r, ssRun, nRun, nullptr, nullptr, nullptr, spec.segments)) {
+            ss[k] = kInf;
+            runsDone[k] = idx.size();
+            return false;
+        }
+        ss[k] = (j == 0 ? 0.0 : ss[k]) + ssRun;
+        runsDone[k] = j + 1;
+        return true;
+    };
+    std::atomic<double> lowest{below};
+    auto offer = [&](double v) {
+        for (double seen = lowest.load(); v < seen && !lowest.compare_exchange_weak(seen, v);) {
+        }
+    };
+    parallelFor(n, [&](size_t k) {
+        models[k] = buildModel(cx, spec, points[k], masses[k]);
+        if (idx.empty()) ss[k] = 0.0, runsDone[k] = 0;
+        else if (addRun(k, 0) && idx.size() == 1) offer(ss[k]);
+    });
+    std::vector<size_t> order(n);
+    std::iota(order.begin(), order.end(), size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return ss[a] < ss[b]; });
+    parallelFor(n, [&](size_t o) {
+        const size_t k = order[o];
+        while (runsDone[k] < idx.size() && !(ss[k] > lowest.load()))
+            if (!addRun(k, runsDone[k])) return;
+        if (runsDone[k] == idx.size()) offer(ss[k]);
+    });
+    int best = -1;
+    for (size_t k = 0; k < n; ++k)
+        if (runsDone[k] == idx.size() && ss[k] < below && (best < 0 || ss[k] < ss[static_cast<size_t>(best)]))
+            best = static_cast<int>(k);
+    if (sums) *sums = ss;
+    return best;
 }
 
 }  // namespace stickslip::identify::detail

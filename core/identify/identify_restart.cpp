@@ -30,12 +30,10 @@ struct RestartTry {
 RestartTry tryRestart(Loop& L, const Spec& spec, const FitOutcome& fit, const std::vector<std::map<std::string, double>>& points,
                       const std::function<std::string(int best)>& what) {
     RestartTry r;
-    r.bestSS = fit.ss * (1.0 - 1e-6);
-    for (size_t i = 0; i < points.size(); ++i) {
-        const double ss = evalSS(L.cx, spec, points[i], L.fitIdx, r.bestSS);
-        if (std::isfinite(ss) && ss < r.bestSS) r.bestSS = ss, r.best = static_cast<int>(i);
-    }
+    std::vector<double> sums;
+    r.best = lowestSS(L.cx, spec, points, L.fitIdx, fit.ss * (1.0 - 1e-6), &sums);
     if (r.best < 0) return r;
+    r.bestSS = sums[static_cast<size_t>(r.best)];
     r.gain = L.bicOf(fit, spec, 1.0) - L.bicAt(r.bestSS, fit, spec, 1.0);
     r.worthIt = restartWorthIt(r.gain, L.opt.restartMargin);
     if (r.worthIt) {

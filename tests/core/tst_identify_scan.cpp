@@ -1,7 +1,7 @@
-// The sums of squares behind the candidates' scanned starts and the restart guards
-// (identify_residuals.cpp evalSS, identify_fit.cpp scannedStart): a sum stopped once it passes a
-// bound is a lower bound above it and never changes which point is lowest. Prescribed runs made
-// by the project's own simulator (identify_synth.hpp).
+// The search for the lowest sum of squares behind the candidates' scanned starts and the restart
+// guards (identify_residuals.cpp lowestSS, identify_fit.cpp scannedStart): a sum stopped once it
+// passes the lowest full sum so far is a lower bound above it and never changes which point is
+// lowest. Prescribed runs made by the project's own simulator (identify_synth.hpp).
 #include <QtTest/QtTest>
 
 #include <cmath>
@@ -41,31 +41,57 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 class TestIdentifyScan : public QObject {
     Q_OBJECT
 private slots:
-    // Without a bound (or with one the full sum does not pass) evalSS is the full sum to the last
-    // bit; with one, it stops after the first run that passes it and returns that partial sum.
-    void evalSSStopsAfterTheRunThatPassesTheBound() {
+    // lowestSS answers as the exhaustive search does: the lowest full sum (ties: the first),
+    // only below the bound; the full sums it reports are evalSS's to the last bit, and a point it
+    // stopped early carries a partial sum that is a lower bound of its full one and above the
+    // answer's.
+    void lowestSSIsTheExhaustiveAnswer() {
         Fixture fx;
         std::string why;
         QVERIFY2(fx.make(synth::trueModel(), why), why.c_str());
         QCOMPARE(fx.idx.size(), size_t{4});
         const Spec spec;
-        const double full = evalSS(fx.cx, spec, fx.start, fx.idx);
-        QVERIFY(std::isfinite(full) && full > 0);
-        QCOMPARE(evalSS(fx.cx, spec, fx.start, fx.idx, kInf), full);
-        QCOMPARE(evalSS(fx.cx, spec, fx.start, fx.idx, full), full);  // equal is not above
-        // Partial sums run by run, as the full one adds them.
-        std::vector<double> upTo;
-        double acc = 0;
-        for (size_t i : fx.idx) upTo.push_back(acc += evalSS(fx.cx, spec, fx.start, {i}));
-        QCOMPARE(upTo.back(), full);
-        QVERIFY(upTo.front() < full);
-        // A bound below the first run's sum: stopped after it.
-        QCOMPARE(evalSS(fx.cx, spec, fx.start, fx.idx, 0.5 * upTo[0]), upTo[0]);
-        // A bound between the second and third partial sums: stopped after the third run.
-        const double between = 0.5 * (upTo[1] + upTo[2]);
-        const double stopped = evalSS(fx.cx, spec, fx.start, fx.idx, between);
-        QCOMPARE(stopped, upTo[2]);
-        QVERIFY(stopped > between && stopped <= full);
+        // The truth, points around it in μ and η, a duplicate of the truth, and a point that
+        // cannot be evaluated.
+        std::vector<std::map<std::string, double>> pts;
+        for (double f : {1.3, 0.7, 1.0, 1.6, 0.9, 1.0, 2.5, 1.05}) {
+            std::map<std::string, double> v = fx.start;
+            v["mu"] *= f;
+            v["eta"] *= 2.0 - f * 0.5;
+            pts.push_back(v);
+        }
+        pts[5] = pts[2];
+        pts.push_back(fx.start);
+        pts.back()["mu"] = std::numeric_limits<double>::quiet_NaN();
+        std::vector<double> full;
+        for (const auto& v : pts) full.push_back(evalSS(fx.cx, spec, v, fx.idx));
+        int exhaustive = -1;
+        for (size_t k = 0; k < full.size(); ++k)
+            if (std::isfinite(full[k]) && (exhaustive < 0 || full[k] < full[static_cast<size_t>(exhaustive)]))
+                exhaustive = static_cast<int>(k);
+        QVERIFY(exhaustive >= 0);
+        QVERIFY(!std::isfinite(full.back()) || full.back() > full[static_cast<size_t>(exhaustive)]);
+        std::vector<double> sums;
+        const int got = lowestSS(fx.cx, spec, pts, fx.idx, kInf, &sums);
+        qInfo("exhaustive: point %d at %.6g; lowestSS: point %d", exhaustive, full[static_cast<size_t>(exhaustive)], got);
+        QCOMPARE(got, exhaustive);
+        QCOMPARE(got, 2);  // the truth, not its later duplicate
+        QCOMPARE(sums[2], full[2]);
+        int stopped = 0;
+        for (size_t k = 0; k < pts.size(); ++k) {
+            if (sums[k] == full[k]) continue;
+            ++stopped;
+            QVERIFY(sums[k] <= full[k] || !std::isfinite(full[k]));
+            QVERIFY(sums[k] > full[2]);
+        }
+        qInfo("%d of %zu points stopped before their last run", stopped, pts.size());
+        QVERIFY(stopped > 0);
+        // A bound: only a point strictly below it counts.
+        QCOMPARE(lowestSS(fx.cx, spec, pts, fx.idx, full[2]), -1);
+        QCOMPARE(lowestSS(fx.cx, spec, pts, fx.idx, std::nextafter(full[2], kInf)), 2);
+        // One run, and no point at all.
+        QCOMPARE(lowestSS(fx.cx, spec, pts, {fx.idx[1]}), 2);
+        QCOMPARE(lowestSS(fx.cx, spec, {}, fx.idx), -1);
     }
 
     // The scan keeps the lowest of its points by their full sums: the point it returns fits at
