@@ -91,8 +91,14 @@ void IdentifyLoopTab::buildLoopLimits(QFormLayout* form) {
     maxEffects_->setSuffix(tr(" effects"));
     bicMargin_ = new QDoubleSpinBox(this);
     bicMargin_->setRange(0, 1000);
+    bicMargin_->setObjectName("bicMargin");
+    bicMargin_->setToolTip(tr("Penalised-fit test: an effect must lower the BIC by more than this margin. 0: any "
+                              "decrease."));
+    // The box shows the test itself, ΔBIC < −margin; at margin 0 that is "ΔBIC < 0.00", not "< −0.00".
+    const auto showTest = [this](double m) { bicMargin_->setPrefix(m > 0 ? tr("ΔBIC < −") : tr("ΔBIC < ")); };
+    connect(bicMargin_, qOverload<double>(&QDoubleSpinBox::valueChanged), this, showTest);
     bicMargin_->setValue(IdentifyOptions{}.bicMargin);
-    bicMargin_->setPrefix(tr("ΔBIC < −"));
+    showTest(bicMargin_->value());
     // Selection test (2b): the relevance margin on the held-out gain (IdentifyOptions::minHeldOutGain).
     minHeldOutGain_ = new QDoubleSpinBox(this);
     minHeldOutGain_->setRange(0, 99);

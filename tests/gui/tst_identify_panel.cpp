@@ -3,6 +3,7 @@
 // equal text in the tables), cancellation, the identify loop compared with the core, report
 // export read back, and the dock in the main window (screenshot with IDENTIFY_PANEL_SHOT=FILE).
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -320,6 +321,15 @@ private slots:
         // The panel's selection settings start at the CLI's defaults (IdentifyOptions).
         QCOMPARE(req.options.bicMargin, IdentifyOptions{}.bicMargin);
         QCOMPARE(req.options.minHeldOutGain, IdentifyOptions{}.minHeldOutGain);
+        // The margin box reads as the test: "ΔBIC < 0.00" at margin 0, "ΔBIC < −2.00" at 2.
+        auto* margin = p.findChild<QDoubleSpinBox*>("bicMargin");
+        QVERIFY(margin);
+        const double m0 = margin->value();
+        margin->setValue(0.0);
+        QCOMPARE(margin->text(), QString("ΔBIC < ") + margin->textFromValue(0.0));
+        margin->setValue(2.0);
+        QCOMPARE(margin->text(), QString("ΔBIC < −") + margin->textFromValue(2.0));
+        margin->setValue(m0);
         QSignalSpy shown(&p, &IdentifyPanel::identifyShown);
         const double cpu0 = cpuSeconds();
         QElapsedTimer wall;
