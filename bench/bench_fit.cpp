@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <string>
 
+#include "core/heap_settings.hpp"
 #include "core/identify/fit.hpp"
 
 using namespace stickslip;
@@ -34,6 +35,7 @@ double cpuSeconds() {
 }  // namespace
 
 int main(int argc, char** argv) {
+    stickslip::applyHeapSettings();  // as stickslip-cli and the app do
     const std::string dir = argc > 1 ? argv[1] : std::string(STICKSLIP_SHARED_DIR) + "/data/real/friction-damper";
     const int starts = argc > 2 ? std::atoi(argv[2]) : 3;
     const int threads = argc > 3 ? std::atoi(argv[3]) : 0;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/heap_settings.hpp"
 #include "core/identify/identify.hpp"
 #include "core/identify/preprocess.hpp"
 #include "core/io/dataset.hpp"
@@ -50,6 +51,7 @@ static int runCase(const char* title, const std::vector<std::string>& files, con
 }
 
 int main() {
+    stickslip::applyHeapSettings();  // as stickslip-cli and the app do
     const std::string shared = STICKSLIP_SHARED_DIR;
     std::vector<std::string> damper;
     for (const char* f : {"0.5", "1"})

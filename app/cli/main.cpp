@@ -2,12 +2,14 @@
 #include <iostream>
 
 #include "cancel.hpp"
+#include "core/heap_settings.hpp"
 #include "cli_app.hpp"
 #include "commands.hpp"
 #include "mpi_runner.hpp"
 
 int main(int argc, char** argv) {
     using namespace stickslip::cli;
+    stickslip::applyHeapSettings();  // before any thread starts (heap_settings.hpp)
     mpiStart(argc, argv);  // a no-op unless launched by mpirun/srun
     installCancelHandlers();
     CLI::App app;

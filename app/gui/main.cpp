@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "core/heap_settings.hpp"
 #include "core/presets.hpp"
 #include "core/version.hpp"
 #include "command_line.hpp"
@@ -140,6 +141,7 @@ void armScreenshot(stickslip::gui::MainWindow& w, QWidget* target, const QString
 }  // namespace
 
 int main(int argc, char** argv) {
+    stickslip::applyHeapSettings();  // before any thread starts (heap_settings.hpp)
     const QString sessionFile = stickslip::gui::takeSessionArgument(argc, argv);
     QApplication app(argc, argv);
     setUpApplication();
