@@ -17,7 +17,6 @@
 namespace stickslip::identify {
 
 using namespace detail;
-using Clock = std::chrono::steady_clock;
 
 namespace {
 
@@ -496,6 +495,62 @@ bool candidateList(const IdentifyOptions& opt, std::vector<std::string>& cands, 
     return true;
 }
 
+// The loop on prepared runs: baseline, rounds, self-test and report (identifyEffects). Returns
+// with L.res.ok unset (message set) when it cannot finish.
+void runLoop(Loop& L, const std::vector<IdentifyRun>& runs) {
+    const IdentifyOptions& opt = L.opt;
+    IdentifyResult& res = L.res;
+    Context& cx = L.cx;
+    for (size_t i = 0; i < runs.size(); ++i) (runs[i].validation ? L.valIdx : L.fitIdx).push_back(i);
+    if (L.fitIdx.empty()) {
+        res.message = "every run is a validation run: nothing to fit";
+        return;
+    }
+    std::vector<std::string> cands;
+    if (!candidateList(opt, cands, res.message)) return;
+    L.episodes = slipEpisodes(cx, L.fitIdx, opt.stickVelocity_mps);
+    res.slipEpisodes = L.episodes;
+    res.heldOutAlpha = opt.heldOutAlpha;
+    res.minHeldOutGain = opt.minHeldOutGain;
+    res.nullAlpha = opt.nullAlpha;
+    res.nullReplicas = opt.nullReplicas;
+    res.bicMargin = opt.bicMargin;
+    res.restartMargin = opt.restartMargin;
+    res.nullNumerics = opt.nullNumerics && opt.nullReplicas > 0;
+    res.identifiabilityAlpha = opt.identifiabilityAlpha;
+    if (const ParamIssues bad = opt.validate(); !bad.empty()) {
+        res.message = formatIssues(bad);
+        return;
+    }
+    if (!fitBaseline(L, runs)) return;
+    res.residual = L.residualName(L.spec);
+    for (int round = 1; round <= opt.maxEffects; ++round) {
+        if (L.cancelled()) {
+            res.cancelled = true;
+            break;
+        }
+        if (!runRound(L, round, cands)) break;
+    }
+    if (!L.res.effectsAdded.empty() && !L.cancelled()) dropVanishedEffects(L);
+    // The self-test around the final baseline (round 1 may have refitted it, restartFromCandidates).
+    if (opt.selfTest.replicas > 0 && !L.cancelled()) {
+        L.progress("self-test", 0.0);
+        res.selfTest = runSelfTest(cx, L.baseSpec, L.baseFit, L.fitIdx, cands,
+                                   std::min(L.baseFit.count / std::max(res.tauInt, 1.0), L.episodes));
+        if (!res.selfTest.ok && L.cancelled()) {
+            res.cancelled = true;
+            res.message = "cancelled during the self-test";
+            return;
+        }
+    }
+    for (const std::string& c : cands)
+        if (L.scores.count(c)) res.candidates.push_back(L.scores[c]);
+    L.progress("report", 1.0);
+    finishReport(L);
+    res.ok = true;
+    res.cancelled = res.cancelled || L.cancelled();
+}
+
 }  // namespace
 
 IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOptions& opt) {
@@ -522,55 +577,11 @@ IdentifyResult identifyEffects(std::vector<IdentifyRun> runs, const IdentifyOpti
         if (opt.nullNumerics && opt.nullReplicas > 0 && dec > 1 && prepareContext(runs, fullOpt, full, one, why))
             cx.fullRate = &full;
     }
-    Loop L(cx, opt, res);
-    for (size_t i = 0; i < runs.size(); ++i) (runs[i].validation ? L.valIdx : L.fitIdx).push_back(i);
-    if (L.fitIdx.empty()) {
-        res.message = "every run is a validation run: nothing to fit";
-        return res;
-    }
-    std::vector<std::string> cands;
-    if (!candidateList(opt, cands, res.message)) return res;
-    L.episodes = slipEpisodes(cx, L.fitIdx, opt.stickVelocity_mps);
-    res.slipEpisodes = L.episodes;
-    res.heldOutAlpha = opt.heldOutAlpha;
-    res.minHeldOutGain = opt.minHeldOutGain;
-    res.nullAlpha = opt.nullAlpha;
-    res.nullReplicas = opt.nullReplicas;
-    res.bicMargin = opt.bicMargin;
-    res.restartMargin = opt.restartMargin;
-    res.nullNumerics = opt.nullNumerics && opt.nullReplicas > 0;
-    res.identifiabilityAlpha = opt.identifiabilityAlpha;
-    if (const ParamIssues bad = opt.validate(); !bad.empty()) {
-        res.message = formatIssues(bad);
-        return res;
-    }
-    if (!fitBaseline(L, runs)) return res;
-    res.residual = L.residualName(L.spec);
-    for (int round = 1; round <= opt.maxEffects; ++round) {
-        if (L.cancelled()) {
-            res.cancelled = true;
-            break;
-        }
-        if (!runRound(L, round, cands)) break;
-    }
-    if (!L.res.effectsAdded.empty() && !L.cancelled()) dropVanishedEffects(L);
-    // The self-test around the final baseline (round 1 may have refitted it, restartFromCandidates).
-    if (opt.selfTest.replicas > 0 && !L.cancelled()) {
-        res.selfTest = runSelfTest(cx, L.baseSpec, L.baseFit, L.fitIdx, cands,
-                                   std::min(L.baseFit.count / std::max(res.tauInt, 1.0), L.episodes));
-        if (!res.selfTest.ok && L.cancelled()) {
-            res.cancelled = true;
-            res.message = "cancelled during the self-test";
-            return res;
-        }
-    }
-    for (const std::string& c : cands)
-        if (L.scores.count(c)) res.candidates.push_back(L.scores[c]);
-    finishReport(L);
-    res.ok = true;
-    res.cancelled = res.cancelled || L.cancelled();
-    res.wallTime_s = std::chrono::duration<double>(Clock::now() - t0).count();
-    L.progress("done", 1.0);
+    Loop L(cx, opt, res, t0);
+    runLoop(L, runs);
+    L.closeStage();
+    res.wallTime_s = L.elapsed();
+    if (res.ok && opt.progress) opt.progress("done", 1.0);
     return res;
 }
 

@@ -400,6 +400,14 @@ struct LawResolution {
     }
 };
 
+// One stage of the loop as its progress reported it (IdentifyOptions::progress): where the
+// wall time and the fits went (the report's "timeline").
+struct IdentifyStage {
+    std::string label;
+    double start_s = 0, end_s = 0;  // since identifyEffects began
+    long fits = 0;                  // fits the stage ran
+};
+
 struct IdentifyResult {
     bool ok = false;
     bool cancelled = false;
@@ -419,6 +427,7 @@ struct IdentifyResult {
     std::vector<RunTrace> traces;
     double wallTime_s = 0;
     long fits = 0;
+    std::vector<IdentifyStage> timeline;  // consecutive stages, from the baseline to the report
     int decimation = 1;       // samples used: every decimation-th
     int edgeGuard = 0;        // dynamics law channel: samples kept from a stuck one (IdentifyOptions::maskEdgeGuard; largest over the runs)
     std::string jacobian = "forward";  // the solvers' Jacobian while iterating (IdentifyOptions::forwardJacobian)

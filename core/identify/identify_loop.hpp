@@ -2,6 +2,7 @@
 // when it stopped in a worse minimum (identify_restart.cpp).
 #pragma once
 
+#include <chrono>
 #include <map>
 #include <string>
 #include <vector>
@@ -9,6 +10,8 @@
 #include "identify_internal.hpp"
 
 namespace stickslip::identify::detail {
+
+using Clock = std::chrono::steady_clock;
 
 // A candidate fitted in a round: its score, its fit and the model it extends to.
 struct Tried {
@@ -20,7 +23,8 @@ struct Tried {
 
 // The loop's state: the current model, its fit, errors and diagnostics, and every score so far.
 struct Loop {
-    Loop(Context& c, const IdentifyOptions& o, IdentifyResult& r) : cx(c), opt(o), res(r) {}
+    Loop(Context& c, const IdentifyOptions& o, IdentifyResult& r, Clock::time_point started = Clock::now())
+        : cx(c), opt(o), res(r), t0(started) {}
     Context& cx;
     const IdentifyOptions& opt;
     IdentifyResult& res;
@@ -36,11 +40,27 @@ struct Loop {
     int roundRestarts = 0;  // restartFromCandidates taken in the current round
     Spec baseSpec;             // the baseline as adopted (adoptBaseline), for the self-test
     FitOutcome baseFit;
+    Clock::time_point t0;  // when identifyEffects began (IdentifyResult::timeline)
+    mutable bool stageOpen = false;
 
     bool cancelled() const { return opt.cancel && opt.cancel->load(); }
+    // Reports a stage to the caller and opens it in res.timeline (closing the previous one).
     void progress(const std::string& s, double f) const {
+        closeStage();
+        const double now = res.timeline.empty() ? elapsed() : res.timeline.back().end_s;
+        res.timeline.push_back({s, now, now, res.fits});
+        stageOpen = true;
         if (opt.progress) opt.progress(s, f);
     }
+    // Closes res.timeline's open stage: its end and the fits it ran (an open stage holds the fit
+    // count at its start).
+    void closeStage() const {
+        if (!stageOpen) return;
+        res.timeline.back().end_s = elapsed();
+        res.timeline.back().fits = res.fits - res.timeline.back().fits;
+        stageOpen = false;
+    }
+    double elapsed() const { return std::chrono::duration<double>(Clock::now() - t0).count(); }
     // The penalised criterion with the effective sample count capped by the independent units
     // (slip episodes, or segments with the segment residual).
     double bicOf(const FitOutcome& f, const Spec& s, double tauInt) const { return bicAt(f.ss, f, s, tauInt); }

@@ -219,6 +219,10 @@ nlohmann::json toJson(const IdentifyResult& r) {
     j["selection"] = selectionJson(r);
     j["wall_time_s"] = r.wallTime_s;
     j["fits"] = r.fits;
+    nlohmann::json stages = nlohmann::json::array();
+    for (const IdentifyStage& st : r.timeline)
+        stages.push_back({{"stage", st.label}, {"start_s", st.start_s}, {"wall_s", st.end_s - st.start_s}, {"fits", st.fits}});
+    j["timeline"] = stages;
     return j;
 }
 

@@ -28,4 +28,30 @@ inline void verifyAcceptedPassedSelection(const stickslip::identify::IdentifyRes
     }
 }
 
+// The report's timeline: consecutive stages from the baseline to the report, each with a
+// non-negative wall time, whose fits add up to the loop's and whose times to its wall time.
+inline void verifyTimeline(const stickslip::identify::IdentifyResult& r) {
+    QVERIFY(r.timeline.size() >= 3);
+    QCOMPARE(r.timeline.front().label, std::string("baseline"));
+    QCOMPARE(r.timeline.back().label, std::string("report"));
+    long fits = 0;
+    double prevEnd = 0;
+    for (const stickslip::identify::IdentifyStage& st : r.timeline) {
+        QVERIFY(st.fits >= 0);
+        QVERIFY(st.end_s >= st.start_s);
+        QVERIFY(st.start_s >= prevEnd);
+        QVERIFY(st.start_s - prevEnd < 1e-9 || &st == &r.timeline.front());
+        prevEnd = st.end_s;
+        fits += st.fits;
+    }
+    QCOMPARE(fits, r.fits);
+    QVERIFY(r.timeline.front().fits >= 1);  // the baseline's own fit
+    QVERIFY(prevEnd <= r.wallTime_s);
+    QVERIFY(r.wallTime_s - prevEnd < 0.01 * r.wallTime_s + 0.5);
+    const auto j = toJson(r);
+    QCOMPARE(j["timeline"].size(), r.timeline.size());
+    QCOMPARE(j["timeline"][0]["stage"].get<std::string>(), std::string("baseline"));
+    QCOMPARE(j["timeline"][0]["fits"].get<long>(), r.timeline.front().fits);
+}
+
 }  // namespace synth

@@ -29,6 +29,7 @@ void expectFound(const IdentifyResult& r, const std::string& name) {
     QVERIFY(j["candidates"].size() >= 8);
     // The selection's held-out and size tests were made and passed (4 runs: 3 degrees of freedom).
     synth::verifyAcceptedPassedSelection(r, 4, 3.182446);
+    synth::verifyTimeline(r);
     qInfo("%s: Ljung-Box p %.3g, structure ratio %.3f", name.c_str(), r.diagnosticsAfter.whiteness.pValue,
           r.diagnosticsAfter.whiteness.structureRatio);
 }
@@ -132,6 +133,8 @@ private slots:
         QVERIFY2(r.effectsAdded.empty(), r.effectsAdded.empty() ? "" : r.effectsAdded.front().name.c_str());
         QCOMPARE(r.after.validationNrmse, r.before.validationNrmse);
         for (const auto& c : r.candidates) QVERIFY(!c.accepted && !c.reason.empty());
+        synth::verifyTimeline(r);
+        if (QTest::currentTestFailed()) return;
         // A candidate stopped by the ΔBIC margin is told how much evidence the runs could give
         // (n_eff and what limits it), not that noise explains it: the margin test cannot tell
         // noise from a real but weakly supported gain (the damper's six 0.5 Hz runs: backlash
