@@ -132,9 +132,10 @@ bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
 }
 
 // Fits candidate c on top of the current model (warm start from a scan around the current
-// point; retried from another start when it ends above the model it contains or with its size
-// on a physical bound). nullopt when it cannot be scored: the reason is in L.scores[c].
-std::optional<Tried> fitCandidate(Loop& L, Round& R, const std::string& c) {
+// point, or from `previous`, c's fit before the current model was refitted, when that fits the
+// runs better; retried from another start when it ends above the model it contains or with its
+// size on a physical bound). nullopt when it cannot be scored: the reason is in L.scores[c].
+std::optional<Tried> fitCandidate(Loop& L, Round& R, const std::string& c, const Tried* previous) {
     CandidateScore sc;
     sc.name = c;
     sc.round = R.number;
@@ -154,7 +155,10 @@ std::optional<Tried> fitCandidate(Loop& L, Round& R, const std::string& c) {
         bicBase = L.bicOf(sb, R.segSpec, 1.0);
     }
     sc.residual = L.residualName(s2);
-    const auto st = scannedStart(L.cx, s2, c, base->values, L.fitIdx);
+    // After a restart the candidate's own earlier fit is often nearer its new minimum than the
+    // scan: the restart came from such a point (restartFromCandidates).
+    const bool usePrevious = previous && previous->spec.segments == s2.segments && previous->fit.ok;
+    const auto st = scannedStart(L.cx, s2, c, base->values, L.fitIdx, usePrevious ? &previous->fit.values : nullptr);
     FitOutcome f = fitSpec(L.cx, s2, st, L.fitIdx, 1, L.res.fits);
     if (!f.ok) {
         sc.reason = "fit failed: " + f.message;
@@ -379,8 +383,9 @@ void addEffect(Loop& L, Round& R, Tried& chosen, const ModelErrors& me, double h
 }
 
 // One round: every candidate not yet in the model is fitted and scored; the best that passes
-// the selection is added. False when nothing was added (the loop ends).
-bool runRound(Loop& L, int number, const std::vector<std::string>& cands) {
+// the selection is added. False when nothing was added (the loop ends). `previous`: the round's
+// candidate fits before the current model was refitted (fitCandidate).
+bool runRound(Loop& L, int number, const std::vector<std::string>& cands, const std::vector<Tried>& previous = {}) {
     Round R;
     R.number = number;
     R.bicCur = L.bicOf(L.cur, L.spec, L.curDiag.integratedAcfTime);
@@ -393,7 +398,9 @@ bool runRound(Loop& L, int number, const std::vector<std::string>& cands) {
         if (std::find(L.spec.effects.begin(), L.spec.effects.end(), c) != L.spec.effects.end()) continue;
         if (L.cancelled()) break;
         L.progress(R.label() + ": " + c, (k - 1.0) / cands.size());
-        if (std::optional<Tried> t = fitCandidate(L, R, c)) tried.push_back(std::move(*t));
+        const auto prev = std::find_if(previous.begin(), previous.end(), [&](const Tried& t) { return t.sc.name == c; });
+        if (std::optional<Tried> t = fitCandidate(L, R, c, prev != previous.end() ? &*prev : nullptr))
+            tried.push_back(std::move(*t));
     }
     if (tried.empty()) return false;
     // The current model's guard against its own local minimum (in round 1 the baseline's).
@@ -405,7 +412,7 @@ bool runRound(Loop& L, int number, const std::vector<std::string>& cands) {
         ++L.roundRestarts;
         for (const std::string& c : cands)
             if (std::find(L.spec.effects.begin(), L.spec.effects.end(), c) == L.spec.effects.end()) L.scores.erase(c);
-        return runRound(L, number, cands);
+        return runRound(L, number, cands, tried);
     }
     L.roundRestarts = 0;
     std::sort(tried.begin(), tried.end(), [](const auto& a, const auto& b) { return a.sc.deltaBic < b.sc.deltaBic; });

@@ -482,7 +482,8 @@ std::map<std::string, double> effectStart(const Context& cx, const std::string& 
 }
 
 std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, const std::string& effect,
-                                           std::map<std::string, double> vals, const std::vector<size_t>& idx) {
+                                           std::map<std::string, double> vals, const std::vector<size_t>& idx,
+                                           const std::map<std::string, double>* previous) {
     EffectInfo info;
     findEffect(effect, info);
     vals = effectStart(cx, effect, std::move(vals));
@@ -514,6 +515,7 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
         vals[key] = pts[best].v;
         if (!pts[best].partner.empty()) vals[pts[best].partner] = pts[best].pv;
     }
+    if (previous && lowestSS(cx, s2, {vals, *previous}, idx) == 1) return *previous;
     return vals;
 }
 

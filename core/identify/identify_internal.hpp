@@ -239,8 +239,13 @@ std::map<std::string, double> retryStart(const Context& cx, const std::string& e
 // `vals` with effect e's parameters at their start values: the catalogue's initial value (in this
 // data set's units of μ), or the baseline value a parameter continues (viscous_damping's ζ).
 std::map<std::string, double> effectStart(const Context& cx, const std::string& e, std::map<std::string, double> vals);
+// The candidate's start: each log-scaled parameter of `effect` scanned over its range (alone and
+// with D_c or ε_T) around `vals`, the lowest sum of squares over the runs idx kept. `previous`
+// (optional: the candidate's own fit before the current model was refitted) replaces the scanned
+// point when it fits the runs better (ties: the scanned point).
 std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, const std::string& effect,
-                                           std::map<std::string, double> vals, const std::vector<size_t>& idx);
+                                           std::map<std::string, double> vals, const std::vector<size_t>& idx,
+                                           const std::map<std::string, double>* previous = nullptr);
 
 void prepareSegments(const IdentifyRun& r, size_t dec, const IdentifyOptions& opt, Prepared& p);
 void prepareLawMasks(double vStick_mps, Prepared& p);

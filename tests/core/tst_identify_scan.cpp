@@ -123,6 +123,36 @@ private slots:
         // And it is one of the two grid values around the truth's 4 ms (within one log step).
         QVERIFY(std::abs(std::log(st.at(key) / 4e-3)) <= std::log(q.upper / q.lower) / 8.0 + 1e-12);
     }
+
+    // After a restart the candidate's earlier fit competes with the scan: it is the start when it
+    // fits the runs better, and the scanned point otherwise (and on a tie).
+    void previousFitIsTheStartOnlyWhenItFitsBetter() {
+        ExtendedModel truth = synth::trueModel();
+        truth.effects.frictionalLag = FrictionalLag{4e-3};
+        Fixture fx;
+        std::string why;
+        QVERIFY2(fx.make(truth, why), why.c_str());
+        Spec spec;
+        spec.effects = {"frictional_lag"};
+        const std::map<std::string, double> scanned = scannedStart(fx.cx, spec, "frictional_lag", fx.start, fx.idx);
+        const std::string key = "frictional_lag." + [] {
+            EffectInfo info;
+            findEffect("frictional_lag", info);
+            return info.params.front().name;
+        }();
+        // The truth itself (τ = 4 ms exactly) fits better than the scan's grid value.
+        std::map<std::string, double> better = scanned;
+        better[key] = 4e-3;
+        const double ssScan = evalSS(fx.cx, spec, scanned, fx.idx), ssBetter = evalSS(fx.cx, spec, better, fx.idx);
+        QVERIFY2(ssBetter < ssScan, qPrintable(QString("%1 vs %2").arg(ssBetter).arg(ssScan)));
+        QCOMPARE(scannedStart(fx.cx, spec, "frictional_lag", fx.start, fx.idx, &better), better);
+        // A far worse earlier point (μ off by 30 %) loses to the scan, and so does an equal one.
+        std::map<std::string, double> worse = better;
+        worse["mu"] *= 1.3;
+        QVERIFY(evalSS(fx.cx, spec, worse, fx.idx) > ssScan);
+        QCOMPARE(scannedStart(fx.cx, spec, "frictional_lag", fx.start, fx.idx, &worse), scanned);
+        QCOMPARE(scannedStart(fx.cx, spec, "frictional_lag", fx.start, fx.idx, &scanned), scanned);
+    }
 };
 
 QTEST_APPLESS_MAIN(TestIdentifyScan)
