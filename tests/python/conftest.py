@@ -62,8 +62,8 @@ def assert_columns_equal(header, rows, columns, int_columns=()):
             assert text == row[j], f"{name}[{i}]: module {text} vs CLI {row[j]}"
 
 
-def strip_keys(obj, keys=("wall_time_s", "program")):
-    """A JSON value without the keys that differ between two runs (timing, program name)."""
+def strip_keys(obj, keys=("wall_time_s", "start_s", "wall_s", "program")):
+    """A JSON value without the keys that differ between two runs (timing, the timeline's times, program name)."""
     if isinstance(obj, dict):
         return {k: strip_keys(v, keys) for k, v in obj.items() if k not in keys}
     if isinstance(obj, list):
