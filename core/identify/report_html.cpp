@@ -278,6 +278,16 @@ void writeRunTraces(std::ostream& o, const IdentifyResult& r) {
     }
 }
 
+// Where the wall time and the fits went, stage by stage (IdentifyResult::timeline).
+void writeTimeline(std::ostream& o, const IdentifyResult& r) {
+    if (r.timeline.empty()) return;
+    o << "<h2>Where the time went</h2><table><tr><th>stage</th><th>start [s]</th><th>wall [s]</th><th>fits</th></tr>\n";
+    for (const IdentifyStage& st : r.timeline)
+        o << "<tr><td class=l>" << htmlEscape(st.label) << "</td><td>" << fmt(st.start_s, "%.1f") << "</td><td>"
+          << fmt(st.end_s - st.start_s, "%.1f") << "</td><td>" << st.fits << "</td></tr>\n";
+    o << "</table>\n";
+}
+
 }  // namespace
 
 std::string renderHtmlReport(const IdentifyResult& r) {
@@ -290,6 +300,7 @@ std::string renderHtmlReport(const IdentifyResult& r) {
     writeParameters(o, r);
     writeDiagnostics(o, r);
     writeRunTraces(o, r);
+    writeTimeline(o, r);
     o << "</body></html>\n";
     return o.str();
 }

@@ -117,6 +117,7 @@ IdentifyResult handMadeResult() {
     r.residual = "prescribed";
     r.fits = 137;
     r.wallTime_s = 12.34;
+    r.timeline = {{"baseline", 0.02, 4.56, 130}, {"round 1: <lag>", 4.56, 12.3, 7}};
     r.before.fitNrmse = 0.1234;
     r.before.validationNrmse = 0.2345;
     r.after.fitNrmse = 0.05671;
@@ -334,6 +335,10 @@ private slots:
         QVERIFY(!std::regex_search(page, std::regex(">-?(nan|inf)<", std::regex::icase)));
         QVERIFY(has(page, "No unexplained structure"));
         QVERIFY(!has(page, "Recovery self-test"));  // it did not run
+        // The timeline, one row per stage, its label escaped.
+        QVERIFY(has(page, "<h2>Where the time went</h2>"));
+        QVERIFY(has(page, "<tr><td class=l>baseline</td><td>0.0</td><td>4.5</td><td>130</td></tr>"));
+        QVERIFY(has(page, "<tr><td class=l>round 1: &lt;lag&gt;</td><td>4.6</td><td>7.7</td><td>7</td></tr>"));
     }
 
     // An unresolved law channel (LawResolution) is its own warning when the residual is otherwise
