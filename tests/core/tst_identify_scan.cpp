@@ -34,6 +34,17 @@ struct Fixture {
     }
 };
 
+// Runs with a 4 ms frictional lag, and the model with that candidate.
+struct LagFixture : Fixture {
+    Spec spec;
+    bool make(std::string& why) {
+        ExtendedModel truth = synth::trueModel();
+        truth.effects.frictionalLag = FrictionalLag{4e-3};
+        spec.effects = {"frictional_lag"};
+        return Fixture::make(truth, why);
+    }
+};
+
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
@@ -98,13 +109,10 @@ private slots:
     // least as well as every value of the effect's own grid (9 log values across its range) and
     // its start, each evaluated in full here, although the scan abandoned most of them early.
     void scannedStartKeepsTheLowestFullSum() {
-        ExtendedModel truth = synth::trueModel();
-        truth.effects.frictionalLag = FrictionalLag{4e-3};
-        Fixture fx;
+        LagFixture fx;
         std::string why;
-        QVERIFY2(fx.make(truth, why), why.c_str());
-        Spec spec;
-        spec.effects = {"frictional_lag"};
+        QVERIFY2(fx.make(why), why.c_str());
+        const Spec& spec = fx.spec;
         const std::map<std::string, double> st = scannedStart(fx.cx, spec, "frictional_lag", fx.start, fx.idx);
         const double chosen = evalSS(fx.cx, spec, st, fx.idx);
         QVERIFY(std::isfinite(chosen));
@@ -127,13 +135,10 @@ private slots:
     // After a restart the candidate's earlier fit competes with the scan: it is the start when it
     // fits the runs better, and the scanned point otherwise (and on a tie).
     void previousFitIsTheStartOnlyWhenItFitsBetter() {
-        ExtendedModel truth = synth::trueModel();
-        truth.effects.frictionalLag = FrictionalLag{4e-3};
-        Fixture fx;
+        LagFixture fx;
         std::string why;
-        QVERIFY2(fx.make(truth, why), why.c_str());
-        Spec spec;
-        spec.effects = {"frictional_lag"};
+        QVERIFY2(fx.make(why), why.c_str());
+        const Spec& spec = fx.spec;
         const std::map<std::string, double> scanned = scannedStart(fx.cx, spec, "frictional_lag", fx.start, fx.idx);
         const std::string key = "frictional_lag." + [] {
             EffectInfo info;
