@@ -41,23 +41,24 @@ struct Loop {
     Spec baseSpec;             // the baseline as adopted (adoptBaseline), for the self-test
     FitOutcome baseFit;
     Clock::time_point t0;  // when identifyEffects began (IdentifyResult::timeline)
-    mutable bool stageOpen = false;
+    mutable bool stageOpen = false;  // the last stage of res.timeline is still running
+    mutable long stageFits0 = 0;     // res.fits when it began
 
     bool cancelled() const { return opt.cancel && opt.cancel->load(); }
     // Reports a stage to the caller and opens it in res.timeline (closing the previous one).
     void progress(const std::string& s, double f) const {
         closeStage();
         const double now = res.timeline.empty() ? elapsed() : res.timeline.back().end_s;
-        res.timeline.push_back({s, now, now, res.fits});
+        res.timeline.push_back({s, now, now, 0});
+        stageFits0 = res.fits;
         stageOpen = true;
         if (opt.progress) opt.progress(s, f);
     }
-    // Closes res.timeline's open stage: its end and the fits it ran (an open stage holds the fit
-    // count at its start).
+    // Closes res.timeline's open stage: its end and the fits it ran.
     void closeStage() const {
         if (!stageOpen) return;
         res.timeline.back().end_s = elapsed();
-        res.timeline.back().fits = res.fits - res.timeline.back().fits;
+        res.timeline.back().fits = res.fits - stageFits0;
         stageOpen = false;
     }
     double elapsed() const { return std::chrono::duration<double>(Clock::now() - t0).count(); }
