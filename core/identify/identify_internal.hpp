@@ -98,6 +98,10 @@ struct FitOutcome {
     double ss = 0, count = 0;   // over the fitted runs
     int nFree = 0;
     FitResult fit;
+    // Points the solver asked for that the steady-state curve's coordinates put outside C1's or
+    // η's bounds (curve_coordinates.hpp; 0 for a fit in C1, η, v_c): the edge of the feasible
+    // region, which in those coordinates is not a box.
+    long outsideLawBounds = 0;
     // Pooled NRMSE over the fitted runs (each residual already divided by its run's force RMS);
     // `none` without residuals.
     double nrmse(double none = kNaN) const { return count > 0 ? std::sqrt(ss / count) : none; }
