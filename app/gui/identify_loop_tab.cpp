@@ -137,6 +137,10 @@ void IdentifyLoopTab::buildTables(QVBoxLayout* v) {
     v->addWidget(new QLabel(tr("<b>Candidates</b>"), this));
     v->addWidget(candidates_);
     fitHeight(candidates_, 4);
+    timeline_ = makeTable({tr("Stage"), tr("start [s]"), tr("wall [s]"), tr("fits")}, this);
+    v->addWidget(new QLabel(tr("<b>Where the time went</b>"), this));
+    v->addWidget(timeline_);
+    fitHeight(timeline_, 4);
 }
 
 void IdentifyLoopTab::setIdentifyFree(const QStringList& names) {
@@ -203,6 +207,7 @@ void IdentifyLoopTab::showOutcome(const IdentifyOutcome& o) {
     showBeforeAfter(r, added);
     showEffects(r);
     showCandidates(r);
+    showTimeline(r);
     selfTest_->show(r.selfTest);
 }
 
@@ -261,6 +266,23 @@ void IdentifyLoopTab::showCandidates(const IdentifyResult& r) {
     }
     candidates_->resizeColumnsToContents();
     fitHeight(candidates_, 4);
+}
+
+// The stages the loop's progress named (the baseline, each candidate of each round, restarts,
+// noise nulls, held-out checks, the self-test, the report): the same rows as the HTML report's.
+void IdentifyLoopTab::showTimeline(const IdentifyResult& r) {
+    timeline_->setRowCount(static_cast<int>(r.timeline.size()));
+    for (size_t i = 0; i < r.timeline.size(); ++i) {
+        const IdentifyStage& st = r.timeline[i];
+        const int row = static_cast<int>(i);
+        setCell(timeline_, row, 0, QString::fromStdString(st.label));
+        timeline_->item(row, 0)->setTextAlignment(Qt::AlignLeft | Qt::AlignVCenter);
+        setCell(timeline_, row, 1, QString::number(st.start_s, 'f', 1));
+        setCell(timeline_, row, 2, QString::number(st.end_s - st.start_s, 'f', 1));
+        setCell(timeline_, row, 3, QString::number(st.fits));
+    }
+    timeline_->resizeColumnsToContents();
+    fitHeight(timeline_, 6);
 }
 
 }  // namespace stickslip::gui

@@ -1,6 +1,6 @@
 // The Identify panel's Identify tab: the residual -> missing effect -> extended model loop
 // (free law parameters, candidate effects, loop limits, the recovery self-test) and its
-// outcome (error before and after, effects added, every candidate's verdict).
+// outcome (error before and after, effects added, every candidate's verdict, where the time went).
 #pragma once
 
 #include <QStringList>
@@ -40,6 +40,7 @@ public:
     QTableWidget* beforeAfterTable() const { return beforeAfter_; }
     QTableWidget* effectsTable() const { return effects_; }
     QTableWidget* candidateTable() const { return candidates_; }
+    QTableWidget* timelineTable() const { return timeline_; }
     SelfTestView* selfTestView() const { return selfTest_; }
     QLabel* unexplainedLabel() const { return unexplained_; }
     QLabel* baselineBoundsLabel() const { return baselineBounds_; }
@@ -52,6 +53,7 @@ private:
     void showBeforeAfter(const identify::IdentifyResult& r, const QStringList& added);
     void showEffects(const identify::IdentifyResult& r);
     void showCandidates(const identify::IdentifyResult& r);
+    void showTimeline(const identify::IdentifyResult& r);
 
     std::map<std::string, QCheckBox*> free_;
     QListWidget* candidateList_ = nullptr;
@@ -60,6 +62,7 @@ private:
     QTableWidget* beforeAfter_ = nullptr;
     QTableWidget* effects_ = nullptr;
     QTableWidget* candidates_ = nullptr;
+    QTableWidget* timeline_ = nullptr;  // where the time went: the loop's stages (IdentifyResult::timeline)
     SelfTestView* selfTest_ = nullptr;
     QLabel* unexplained_ = nullptr;
     QLabel* baselineBounds_ = nullptr;  // baseline parameters that ended on a bound, and the verdict

@@ -146,6 +146,7 @@ QTableWidget* IdentifyPanel::fitRunTable() const { return fit_->runTable(); }
 QTableWidget* IdentifyPanel::beforeAfterTable() const { return loop_->beforeAfterTable(); }
 QTableWidget* IdentifyPanel::effectsTable() const { return loop_->effectsTable(); }
 QTableWidget* IdentifyPanel::candidateTable() const { return loop_->candidateTable(); }
+QTableWidget* IdentifyPanel::timelineTable() const { return loop_->timelineTable(); }
 SelfTestView* IdentifyPanel::selfTestView() const { return loop_->selfTestView(); }
 QLabel* IdentifyPanel::unexplainedLabel() const { return loop_->unexplainedLabel(); }
 QLabel* IdentifyPanel::baselineBoundsLabel() const { return loop_->baselineBoundsLabel(); }

@@ -75,6 +75,7 @@ public:
     QTableWidget* beforeAfterTable() const;
     QTableWidget* effectsTable() const;
     QTableWidget* candidateTable() const;
+    QTableWidget* timelineTable() const;  // the loop's stages: time and fits
     SelfTestView* selfTestView() const;
     QLabel* unexplainedLabel() const;
     QLabel* baselineBoundsLabel() const;

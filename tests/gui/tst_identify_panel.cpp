@@ -369,6 +369,15 @@ private slots:
         for (size_t i = 0; i < core.candidates.size(); ++i)  // the reports' verdict text, trade-offs included
             QCOMPARE(cell(p.candidateTable(), static_cast<int>(i), 4), QString::fromStdString(verdictOf(core.candidates[i])));
         QCOMPARE(p.effectsTable()->rowCount(), static_cast<int>(core.effectsAdded.size()));
+        // Where the time went: the core's stages and their fits (the times are the run's own).
+        QCOMPARE(p.timelineTable()->rowCount(), static_cast<int>(core.timeline.size()));
+        QVERIFY(!core.timeline.empty());
+        for (size_t i = 0; i < core.timeline.size(); ++i) {
+            QCOMPARE(cell(p.timelineTable(), static_cast<int>(i), 0), QString::fromStdString(core.timeline[i].label));
+            QCOMPARE(cell(p.timelineTable(), static_cast<int>(i), 3), QString::number(core.timeline[i].fits));
+            QCOMPARE(cell(p.timelineTable(), static_cast<int>(i), 2),
+                     QString::number(r.timeline[i].end_s - r.timeline[i].start_s, 'f', 1));
+        }
         const bool unresolved = !lawResolutionText(core.lawResolution).empty();
         QVERIFY(p.unexplainedLabel()->text().contains(core.unexplained ? "Unexplained"
                                                       : unresolved     ? "Numerical resolution"
