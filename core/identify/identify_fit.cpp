@@ -498,6 +498,7 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
     findEffect(effect, info);
     vals = effectStart(cx, effect, std::move(vals));
     const std::vector<FitParameter> ps = parameters(cx, s2, vals);
+    double atVals = kNaN;  // the full sum of squares at vals, as the last scan computed it
     for (const EffectParam& q0 : info.params) {
         const EffectParam q = scaledParam(q0, cx.muScale);
         if (!q.logScale || !(q.lower > 0)) continue;
@@ -521,12 +522,18 @@ std::map<std::string, double> scannedStart(const Context& cx, const Spec& s2, co
             if (!pts[k].partner.empty()) points[k][pts[k].partner] = pts[k].pv;
         }
         // The lowest wins (ties: the first, i.e. the current point); none evaluable: the current.
-        const size_t best = static_cast<size_t>(std::max(0, lowestSS(cx, s2, points, idx)));
+        std::vector<double> sums;
+        const int lowest = lowestSS(cx, s2, points, idx, std::numeric_limits<double>::infinity(), &sums);
+        const size_t best = static_cast<size_t>(std::max(0, lowest));
+        atVals = lowest >= 0 ? sums[best] : kNaN;
         vals[key] = pts[best].v;
         if (!pts[best].partner.empty()) vals[pts[best].partner] = pts[best].pv;
     }
-    if (previous && lowestSS(cx, s2, {vals, *previous}, idx) == 1) return *previous;
-    return vals;
+    if (!previous) return vals;
+    // The earlier fit only when strictly lower (ties: the scanned point). The scan already has
+    // the scanned point's sum; without a scan (no log-scaled parameter) both are evaluated.
+    if (std::isfinite(atVals)) return lowestSS(cx, s2, {*previous}, idx, atVals) == 0 ? *previous : vals;
+    return lowestSS(cx, s2, {vals, *previous}, idx) == 1 ? *previous : vals;
 }
 
 }  // namespace stickslip::identify::detail
