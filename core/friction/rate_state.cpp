@@ -144,16 +144,22 @@ ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, d
     double dR = -krPlusVisc + C1TN * invR * e0 * st.alpha * invDc;
     // Keep the force from changing sign (possible only when C1 > μ at extreme rates).
     if (hi * eps > a) {
-        double Ra = 0, dRa = 0, alphaA = 0;
-        eval(a / eps, Ra, dRa, alphaA);
-        if (Ra > 0.0) {
-            res.state.force_N = 0.0;
-            res.state.alpha = alphaA;
-            cachedAlpha = alphaA;
-            cachedExp = e;
-            res.slipIncrement_m = a / eps;
-            res.tangent_N_per_m = 0.0;
-            return res;
+        // R(a/ε) < 0 is usually certain from α(a/ε) alone, without the exponential
+        // (slip_newton.hpp); otherwise evaluate it.
+        const double xA = a / eps;
+        const double uA = (st.alpha - c2q * xA * xA) / (1.0 + xA * invDc) * invR;
+        if (!slipResidualCertainlyNegative(a, krPlusVisc * xA, muTN, C1TN, uA)) {
+            double Ra = 0, dRa = 0, alphaA = 0;
+            eval(xA, Ra, dRa, alphaA);
+            if (Ra > 0.0) {
+                res.state.force_N = 0.0;
+                res.state.alpha = alphaA;
+                cachedAlpha = alphaA;
+                cachedExp = e;
+                res.slipIncrement_m = xA;
+                res.tangent_N_per_m = 0.0;
+                return res;
+            }
         }
         hi = a / eps;
     }

@@ -5,6 +5,7 @@
 // strength carries the effects); each law supplies its own residual.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace stickslip {
@@ -16,6 +17,26 @@ struct SlipRoot {
     int iterations = 0;    // residual evaluations (ReturnMapResult::iterations)
     bool converged = false;
 };
+
+// exp(y), but +0 directly below y = −746, where the correctly rounded exp is +0: glibc's exp
+// takes its underflow path there (raising the flag and setting errno), which cost 3–4 % of an
+// identify run (the state's relaxation e^{−Δλ/D_c} over a step that slips many D_c).
+inline double expOrZero(double y) { return y < -746.0 ? 0.0 : std::exp(y); }
+
+// Whether R(x) < 0 is certain without evaluating R there, for a residual of the form
+//   R(x) = a − k x − y0 − c (exp(α(x)/r) − 1),   c ≥ 0,
+// given a lower bound uLow ≤ α(x)/r: since exp(u) − 1 ≥ max(−1, u),
+//   R(x) ≤ a − k x − y0 − c max(−1, uLow).
+// The bound must be below zero by 1e-9 of the terms' size, far beyond the round-off of either
+// the bound or an evaluation of R, so a `true` is the sign an evaluation would compute (the
+// laws use it to skip the evaluation at the zero-force slip a/ε, bit for bit the same result:
+// tst_return_map::zeroForceCheckNeedsNoEvaluationWhenCertain).
+inline bool slipResidualCertainlyNegative(double a, double kx, double y0, double c, double uLow) {
+    if (!(c >= 0.0) || !std::isfinite(uLow)) return false;
+    const double bound = a - kx - y0 - c * std::max(-1.0, uLow);
+    const double size = std::abs(a) + std::abs(kx) + std::abs(y0) + c * std::max(1.0, std::abs(uLow));
+    return bound < -1e-9 * size;
+}
 
 // eval(x, R, dR) evaluates the residual and its slope at x; the caller's functor also keeps
 // whatever else it needs of the last point evaluated (α, exp(α/r)), which is the returned x.

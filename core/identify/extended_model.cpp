@@ -120,7 +120,7 @@ ReturnMapResult slipStep(const ExtendedLaw& law, const LawState& st, const SlipS
     const bool constantRate = law.stateStep == StateStep::ConstantRate;
     auto alphaAt = [&](double x, double& dalpha) {
         if (constantRate) {  // α₁ = −C2 V + (α₀ + C2 V) e^{−Δλ/D_c}, V = Δλ/Δt (StateStep)
-            const double E = std::exp(-x * invDc), ss = c2dt * x, excess = (st.alpha + ss) * E;
+            const double E = expOrZero(-x * invDc), ss = c2dt * x, excess = (st.alpha + ss) * E;
             dalpha = c2dt * (E - 1.0) - excess * invDc;
             return excess - ss;
         }
@@ -145,7 +145,12 @@ ReturnMapResult slipStep(const ExtendedLaw& law, const LawState& st, const SlipS
     // R(Δλ) <= a - y0 + t_N c1 - (ε + η t_N/Δt) Δλ since K1 >= -C1: when that bound puts the
     // root below a/ε, R(a/ε) < 0 and the force cannot reach zero in the step (no evaluation).
     const double rootBound = (a - y0 + tN * c1) / (eps + visc);
-    if (!(c1 >= 0.0 && rootBound * (1.0 + 1e-9) < hi0)) eval(hi, R, dR, alpha);
+    // Else R(a/ε) < 0 is usually still certain from a lower bound of α(a/ε), which needs no
+    // exponential (slip_newton.hpp).
+    if (!(c1 >= 0.0 && rootBound * (1.0 + 1e-9) < hi0) &&
+        !slipResidualCertainlyNegative(a, (eps + visc) * hi, y0, tN * c1,
+                                       stateLowerBound(law.stateStep, st.alpha, hi, c2dt, invDc) * invR))
+        eval(hi, R, dR, alpha);
     if (R > 0.0) {  // slides to zero force within the step
         x = hi;
     } else {
@@ -175,6 +180,14 @@ ReturnMapResult slipStep(const ExtendedLaw& law, const LawState& st, const SlipS
 }
 
 }  // namespace
+
+double stateLowerBound(StateStep step, double alpha0, double slip, double c2PerDt, double invDc) {
+    if (step == StateStep::BackwardEuler) return (alpha0 - c2PerDt * invDc * slip * slip) / (1.0 + slip * invDc);
+    // α = q e^{−y} − C2 Δλ/Δt with q = α_n + C2 Δλ/Δt, y = Δλ/D_c, and
+    // 1/(1 + y) ≥ e^{−y} ≥ max(0, 1 − y) (from e^y ≥ 1 + y), the side that bounds q e^{−y} below.
+    const double q = alpha0 + c2PerDt * slip, y = slip * invDc;
+    return (q >= 0.0 ? q * std::max(0.0, 1.0 - y) : q / (1.0 + y)) - c2PerDt * slip;
+}
 
 ReturnMapResult ExtendedLaw::returnMap(const LawState& st, double dg, double dt, double tN, ExpCache* cache) const {
     SlipStart in;

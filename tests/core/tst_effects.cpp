@@ -2,6 +2,7 @@
 #include <QtTest/QtTest>
 
 #include <cmath>
+#include <random>
 
 #include "core/friction/rate_state.hpp"
 #include "core/identify/effects/registry.hpp"
@@ -162,6 +163,37 @@ private slots:
         qInfo("alpha error / C2 V: constant rate %.2e, backward Euler %.2e", worstExact, worstBe);
         QVERIFY(worstExact < 1e-10);
         QVERIFY(worstBe > 0.1);
+    }
+    // stateLowerBound (the return map's zero-force certificate) is below the state either step
+    // reaches, over random states, slips and rates, within 1 % of |α_n| + C2 Δλ/Δt of it for slips under
+    // D_c/10 (so that it certifies), and equal to backward Euler's value; and with it a step
+    // of the extended law that slides to zero force (C1 > μ, fast, little viscosity) still does.
+    void stateLowerBoundIsBelowTheStep() {
+        std::mt19937_64 rng(11);
+        std::uniform_real_distribution<double> U(0.0, 1.0);
+        double worstClose = 0;
+        for (int i = 0; i < 100000; ++i) {
+            const double a0 = -60.0 + 65.0 * U(rng), Dc = std::pow(10.0, -7.0 + 4.0 * U(rng));
+            const double x = Dc * std::pow(10.0, -4.0 + 7.0 * U(rng)), c = std::pow(10.0, -2.0 + 8.0 * U(rng));
+            const double exact = (a0 + c * x) * std::exp(-x / Dc) - c * x;
+            const double lb = stateLowerBound(StateStep::ConstantRate, a0, x, c, 1.0 / Dc);
+            QVERIFY2(lb <= exact + 1e-12 * (std::abs(exact) + std::abs(a0) + c * x),
+                     qPrintable(QString("a0=%1 x=%2 Dc=%3 c=%4: %5 > %6").arg(a0).arg(x).arg(Dc).arg(c).arg(lb).arg(exact)));
+            if (x < 0.1 * Dc) worstClose = std::max(worstClose, (exact - lb) / (std::abs(a0) + c * x));
+            const double be = (a0 - c * x * x / Dc) / (1.0 + x / Dc);
+            QVERIFY(std::abs(stateLowerBound(StateStep::BackwardEuler, a0, x, c, 1.0 / Dc) - be) <= 1e-12 * (std::abs(be) + 1.0));
+        }
+        qInfo("constant rate: bound within %.3g of |alpha_n| + C2 x/dt for slips below Dc/10", worstClose);
+        QVERIFY(worstClose < 0.01);
+        for (const StateStep step : {StateStep::ConstantRate, StateStep::BackwardEuler}) {
+            ExtendedModel m = baseModel();
+            m.law.mu = 0.05; m.law.C1 = 0.5; m.law.eta_s_per_m = 1e-6;
+            m.stateStep = step;
+            const ExtendedLaw law = ExtendedLaw::make(m);
+            const ReturnMapResult r = law.returnMap(law.initialState({6.2, 0}), 1e-3, 1e-5, 6.2);
+            QCOMPARE(r.state.force_N, 0.0);
+            QCOMPARE(r.slipIncrement_m, 1e-3);
+        }
     }
     // Both steps converge to the same solution of the law as the step shrinks, and on a coarse
     // step the exact state update is the closer one (force along a sine slip, against 1 µs steps).

@@ -4,6 +4,7 @@
 #include <QtTest>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "core/friction/friction_law.hpp"
@@ -73,6 +74,63 @@ private slots:
         double R = 0, dR = 0;
         eval(r.x, R, dR);
         QVERIFY(std::abs(R) <= ftol);
+    }
+    // expOrZero is std::exp bit for bit (it only skips the library's underflow path where exp
+    // rounds to +0), over random arguments and at the edge of the subnormals.
+    void expOrZeroIsExp() {
+        std::mt19937_64 rng(3);
+        std::uniform_real_distribution<double> U(-800.0, 5.0);
+        for (int i = 0; i < 100000; ++i) {
+            const double y = U(rng);
+            QVERIFY2(expOrZero(y) == std::exp(y), qPrintable(QString::number(y, 'g', 17)));  // exact, not QCOMPARE's fuzzy
+        }
+        for (double y : {-708.4, -744.0, -745.1, -745.13, -745.14, -745.2, -746.0, std::nextafter(-746.0, 0.0), -746.5, -1e4})
+            QVERIFY2(expOrZero(y) == std::exp(y) && std::signbit(expOrZero(y)) == std::signbit(std::exp(y)),
+                     qPrintable(QString::number(y, 'g', 17)));
+        QVERIFY(expOrZero(-746.0) == 0.0);
+    }
+    // The certificate that lets the return maps skip evaluating R at the zero-force slip a/ε
+    // (slip_newton.hpp): whenever it says "certainly negative", R evaluated with the true
+    // exponential is negative, over random residuals of the return map's form and lower bounds
+    // of α/r anywhere below the true value; it does say so for most of them (else it saves
+    // nothing); and a step that does slide to zero force (C1 > μ, a fast step, little
+    // viscosity: R(a/ε) > 0) still does so in both laws and both state steps, force exactly 0.
+    void zeroForceCheckNeedsNoEvaluationWhenCertain() {
+        std::mt19937_64 rng(7);
+        std::uniform_real_distribution<double> U(0.0, 1.0);
+        long certain = 0, negative = 0;
+        for (int i = 0; i < 200000; ++i) {
+            const double a = std::pow(10.0, -3.0 + 6.0 * U(rng)), kx = a * 2.0 * U(rng);
+            const double y0 = a * (-1.0 + 3.0 * U(rng)), c = a * 3.0 * U(rng);
+            const double u = -800.0 + 805.0 * U(rng) * U(rng), uLow = u - (i % 3 == 0 ? 0.0 : 5.0 * U(rng));
+            const double R = a - kx - y0 - c * (std::exp(u) - 1.0);
+            negative += R < 0.0;
+            if (!slipResidualCertainlyNegative(a, kx, y0, c, uLow)) continue;
+            ++certain;
+            QVERIFY2(R < 0.0, qPrintable(QString("a=%1 kx=%2 y0=%3 c=%4 u=%5 uLow=%6: R=%7")
+                                             .arg(a).arg(kx).arg(y0).arg(c).arg(u).arg(uLow).arg(R)));
+        }
+        qInfo("certain for %ld of %ld negative residuals", certain, negative);
+        QVERIFY(certain > negative / 2);
+        QVERIFY(!slipResidualCertainlyNegative(1.0, 0.5, 0.0, 1.0, -1.0));   // R ≤ 1.5: not certain
+        QVERIFY(!slipResidualCertainlyNegative(1.0, 1.0, -1e-12, 0.0, 0.0));  // R = 1e-12 > 0
+        QVERIFY(slipResidualCertainlyNegative(1.0, 1.0, 0.1, 0.2, -0.1));     // R ≤ −0.08
+        QVERIFY(!slipResidualCertainlyNegative(1.0, 1.0, 0.1, -0.2, -0.1));   // c < 0: no claim
+
+        RateStateParams p;
+        p.mu = 0.05;
+        p.C1 = 0.5;
+        p.eta_s_per_m = 1e-6;
+        const RateStateLaw law{p};
+        const double tN = 6.2, dt = 1e-5, dg = 1e-3;  // trial 1000 N, a/ε = 1 mm in 10 µs
+        const ReturnMapResult r = law.returnMap(LawState{0.0, 0.0, {}}, dg, dt, tN);
+        QCOMPARE(r.state.force_N, 0.0);
+        QCOMPARE(r.slipIncrement_m, dg);
+        QCOMPARE(r.tangent_N_per_m, 0.0);
+        // The usual case the certificate is for: C1 > μ but a slow step, R(a/ε) < 0.
+        const ReturnMapResult slow = law.returnMap(LawState{0.0, 0.0, {}}, 1e-6, 1e-3, tN);
+        QVERIFY2(slow.converged && !slow.stuck && slow.state.force_N > 0.0 && slow.slipIncrement_m < 1e-6,
+                 qPrintable(QString("F=%1 slip=%2 k=%3").arg(slow.state.force_N).arg(slow.slipIncrement_m).arg(slow.tangent_N_per_m)));
     }
     // Eq. 5: in steady sliding Ḟ = 0 and α̇ = 0, so λ̇ = |V|, α = −C2|V| and Φ = η t_N |V|:
     //   |F|/t_N = μ + K1(−C2|V|) + η|V|.

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "effect.hpp"
+#include "../../friction/slip_newton.hpp"
 
 namespace stickslip::identify {
 
@@ -27,7 +28,7 @@ struct StickHealing {
     double ageAfterSlip(double age_s, double slip_m, double dt_s) const {
         const double x = std::abs(slip_m) / Dh_m;
         const double renewed = x > 1e-12 ? -std::expm1(-x) / x : 1.0;
-        return age_s * std::exp(-x) + dt_s * renewed;
+        return age_s * expOrZero(-x) + dt_s * renewed;
     }
 
     static EffectInfo info() {
