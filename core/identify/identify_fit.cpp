@@ -246,14 +246,16 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
         for (const auto& p : prob.parameters) v.push_back(p.name);
         return v;
     }();
-    auto outside = std::make_shared<std::atomic<long>>(0);  // batchResiduals evaluates in parallel
-    const LawValues lawValues = [names, curve, outside](const std::vector<double>& pv, std::map<std::string, double>& vals) {
+    // Counted from batchResiduals' threads; `prob` and with it every copy of the lambda lives
+    // only until fitLeastSquares returns below.
+    std::atomic<long> outside{0};
+    const LawValues lawValues = [names, curve, &outside](const std::vector<double>& pv, std::map<std::string, double>& vals) {
         vals.clear();
         for (size_t i = 0; i < names.size(); ++i) vals[names[i]] = pv[i];
         if (!curve.active()) return true;
         curve.toLaw(pv, vals);
         if (curve.withinLawBounds(vals)) return true;
-        outside->fetch_add(1, std::memory_order_relaxed);
+        outside.fetch_add(1, std::memory_order_relaxed);
         return false;
     };
     prob.residuals = [&cx, &spec, &idx, lawValues](const std::vector<double>& pv, std::vector<double>& r) {
@@ -273,7 +275,7 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
     } else {
         out = outcomeOf(cx, spec, idx, std::move(fit), curve, output);
     }
-    out.outsideLawBounds = outside->load();
+    out.outsideLawBounds = outside.load();
     return out;
 }
 
