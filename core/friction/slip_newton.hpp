@@ -19,8 +19,9 @@ struct SlipRoot {
 };
 
 // exp(y), but +0 directly below y = −746, where the correctly rounded exp is +0: glibc's exp
-// takes its underflow path there (raising the flag and setting errno), which cost 3–4 % of an
-// identify run (the state's relaxation e^{−Δλ/D_c} over a step that slips many D_c).
+// takes its underflow path there (raising the flag and setting errno), 1.2 % of a whole identify
+// of D13 and 3.9 % of its baseline fit (the state's relaxation e^{−Δλ/D_c} over a step that
+// slips many D_c).
 inline double expOrZero(double y) { return y < -746.0 ? 0.0 : std::exp(y); }
 
 // Whether R(x) < 0 is certain without evaluating R there, for a residual of the form

@@ -29,8 +29,8 @@ enum class StateStep { BackwardEuler, ConstantRate };
 
 // A lower bound of α_{n+1} after a slip increment `slip` from α_n = alpha0 under `step`
 // (c2PerDt = C2/Δt, invDc = 1/D_c), without an exponential: the backward-Euler value itself;
-// for ConstantRate from 1/(1 + Δλ/D_c) ≥ e^{−Δλ/D_c} ≥ max(0, 1 − Δλ/D_c). The return map uses it to know,
-// without evaluating, that a step cannot slide to zero force.
+// for ConstantRate from 1/(1 + Δλ/D_c) ≥ e^{−Δλ/D_c} ≥ max(0, 1 − Δλ/D_c). The return map
+// uses it to know, without evaluating, that a step cannot slide to zero force.
 double stateLowerBound(StateStep step, double alpha0, double slip, double c2PerDt, double invDc);
 
 // Constant model: baseline law and rig, the effects switched on, and the reference load of
