@@ -93,8 +93,9 @@ private slots:
     // (slip_newton.hpp): whenever it says "certainly negative", R evaluated with the true
     // exponential is negative, over random residuals of the return map's form and lower bounds
     // of α/r anywhere below the true value; it does say so for most of them (else it saves
-    // nothing); and a step that does slide to zero force (C1 > μ, a fast step, little
-    // viscosity: R(a/ε) > 0) still does so in both laws and both state steps, force exactly 0.
+    // nothing); and in the bare law a step that does slide to zero force (C1 > μ, a fast step,
+    // little viscosity: R(a/ε) > 0) still does so, force exactly 0 (the extended law's, in both
+    // state steps: tst_effects::stateLowerBoundIsBelowTheStep).
     void zeroForceCheckNeedsNoEvaluationWhenCertain() {
         std::mt19937_64 rng(7);
         std::uniform_real_distribution<double> U(0.0, 1.0);
