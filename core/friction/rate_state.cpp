@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "slip_first_root.hpp"
 #include "slip_newton.hpp"
 
 namespace stickslip {
@@ -165,8 +166,13 @@ ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, d
     }
 
     // Safeguarded Newton from Δλ = 0 (R(0) = Φ_trial > 0, so 0 is the lower bracket).
-    const SlipRoot root = solveSlip([&](double xx, double& Rx, double& dRx) { eval(xx, Rx, dRx, alpha); }, 0.0, R, dR, lo,
-                                    hi, slipHint, 1e-13 * (a + tN));
+    // Where R' < 0 is not certain on [0, hi], R may have three roots, and the step takes the
+    // first (slip_first_root.hpp).
+    const SlipShape shape{false, st.alpha, c2q / invDc, invDc, invR, C1TN * invR, krPlusVisc};
+    auto evalR = [&](double xx, double& Rx, double& dRx) { eval(xx, Rx, dRx, alpha); };
+    const SlipRoot root = slopeRangeEverywhere(shape, e0).max < 0.0
+                              ? solveSlip(evalR, 0.0, R, dR, lo, hi, slipHint, 1e-13 * (a + tN))
+                              : solveFirstSlip(evalR, shape, R, dR, lo, hi, 1e-13 * (a + tN));
     const double x = root.x;
     dR = root.dR;
     res.iterations = root.iterations;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../friction/slip_first_root.hpp"
 #include "../friction/slip_newton.hpp"
 #include "../integrate/dynamics.hpp"
 
@@ -157,10 +158,16 @@ ReturnMapResult slipStep(const ExtendedLaw& law, const LawState& st, const SlipS
         // The rate-state law's own solve, from the elastic–viscous predictor Φ_trial/(ε + η t_N/Δt)
         // (as a warm start; from Δλ = 0, where R = Φ_trial and dα/dΔλ = −α_n/D_c in both state
         // steps, when the predictor is beyond the bracket).
+        // Where R' < 0 is not certain on [0, hi], R may have three roots, and the step takes the
+        // first (slip_first_root.hpp).
         const double phiTrial = in.phiTrial;
         const double dR0 = -(eps + visc) + tN * c1 * invR * e0 * st.alpha * invDc;
-        const SlipRoot root = solveSlip([&](double xx, double& Rx, double& dRx) { eval(xx, Rx, dRx, alpha); }, 0.0, phiTrial,
-                                        dR0, 0.0, hi, phiTrial / (eps + visc), 1e-12 * (a + tN));
+        const SlipShape shape{constantRate, st.alpha, c2dt, invDc, invR, tN * c1 * invR, eps + visc};
+        auto evalR = [&](double xx, double& Rx, double& dRx) { eval(xx, Rx, dRx, alpha); };
+        const double ftol = 1e-12 * (a + tN);
+        const SlipRoot root = slopeRangeEverywhere(shape, e0).max < 0.0
+                                  ? solveSlip(evalR, 0.0, phiTrial, dR0, 0.0, hi, phiTrial / (eps + visc), ftol)
+                                  : solveFirstSlip(evalR, shape, phiTrial, dR0, 0.0, hi, ftol);
         x = root.x;
         dR = root.dR;
         res.iterations = root.iterations;
