@@ -55,6 +55,24 @@ Residual randomResidual(std::mt19937_64& rng, bool constantRate) {
 class TstSlipFirstRoot : public QObject {
     Q_OBJECT
 private slots:
+    // slopeFromRanges: the interval product −k − P e α' over every corner, for either sign of P
+    // and of α' (against a grid of e and α').
+    void slopeFromRangesCoversEveryCorner() {
+        for (const double P : {2.0, -3.0, 0.0}) {
+            SlipShape s;
+            s.P = P, s.k = 10.0;
+            const double e1 = 0.5, e2 = 2.0, d1 = -4.0, d2 = 7.0;
+            const SlopeRange r = slopeFromRanges(s, e1, e2, d1, d2);
+            double lo = 1e300, hi = -1e300;
+            for (int i = 0; i <= 10; ++i)
+                for (int j = 0; j <= 10; ++j) {
+                    const double v = -s.k - P * (e1 + (e2 - e1) * i / 10.0) * (d1 + (d2 - d1) * j / 10.0);
+                    lo = std::min(lo, v), hi = std::max(hi, v);
+                }
+            QCOMPARE(r.min, lo);  // the extremes are at corners, which the grid contains
+            QCOMPARE(r.max, hi);
+        }
+    }
     // slopeRangeOn and slopeRangeEverywhere bound R' at every sampled point of their interval.
     void slopeBoundsHold() {
         std::mt19937_64 rng(11);
