@@ -138,7 +138,6 @@ ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, d
         dR = -krPlusVisc - C1TN * invR * e * dalpha;
     };
 
-    double lo = 0.0;
     double hi = (phiTrial + tN * (K1n + C1)) / krPlusVisc;
     double R = phiTrial, alpha = st.alpha;
     // R'(0) from the exponential already at hand: dα/dΔλ(0) = −α_n / D_c.
@@ -165,14 +164,11 @@ ReturnMapResult RateStateLaw::Prepared::returnMapFromTrial(const LawState& st, d
         hi = a / eps;
     }
 
-    // Safeguarded Newton from Δλ = 0 (R(0) = Φ_trial > 0, so 0 is the lower bracket).
-    // Where R' < 0 is not certain on [0, hi], R may have three roots, and the step takes the
-    // first (slip_first_root.hpp).
+    // Safeguarded Newton from Δλ = 0 (R(0) = Φ_trial > 0, so 0 is the lower bracket). R may
+    // have three roots; the step takes the first (slip_first_root.hpp).
     const SlipShape shape{false, st.alpha, c2q / invDc, invDc, invR, C1TN * invR, krPlusVisc};
     auto evalR = [&](double xx, double& Rx, double& dRx) { eval(xx, Rx, dRx, alpha); };
-    const SlipRoot root = slopeRangeEverywhere(shape, e0).max < 0.0
-                              ? solveSlip(evalR, 0.0, R, dR, lo, hi, slipHint, 1e-13 * (a + tN))
-                              : solveFirstSlip(evalR, shape, R, dR, lo, hi, 1e-13 * (a + tN));
+    const SlipRoot root = solveSlipFirstRoot(evalR, shape, e0, R, dR, hi, slipHint, 1e-13 * (a + tN));
     const double x = root.x;
     dR = root.dR;
     res.iterations = root.iterations;

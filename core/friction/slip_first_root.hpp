@@ -138,4 +138,20 @@ SlipRoot solveFirstSlip(Eval&& eval, const SlipShape& shape, double R0, double d
     return finish(hi, false);
 }
 
+// The return maps' slip solve: the ordinary solve from Δλ = 0 (its warm start slipHint, as
+// solveSlip), kept as it is when its root is certainly the first one, i.e. R' < 0 on [0, hi] by
+// the bound without an exponential, or on [0, root] (then R > 0 before the root, as R(0) > 0);
+// otherwise the certified search, on [0, root] when R(root) ≤ 0. So the result is the ordinary
+// solve's bit for bit wherever that is the first root and can be shown to be.
+template <class Eval>
+SlipRoot solveSlipFirstRoot(Eval&& eval, const SlipShape& shape, double expAlpha0, double R0, double dR0, double hi,
+                            double slipHint, double ftol) {
+    const bool oneRoot = slopeRangeEverywhere(shape, expAlpha0).max < 0.0;
+    const SlipRoot r = solveSlip(eval, 0.0, R0, dR0, 0.0, hi, slipHint, ftol);
+    if (oneRoot || slopeRangeOn(shape, 0.0, r.x).max < 0.0) return r;
+    SlipRoot f = solveFirstSlip(eval, shape, R0, dR0, 0.0, r.R <= 0.0 ? r.x : hi, ftol);
+    f.iterations += r.iterations;
+    return f;
+}
+
 }  // namespace stickslip

@@ -158,16 +158,13 @@ ReturnMapResult slipStep(const ExtendedLaw& law, const LawState& st, const SlipS
         // The rate-state law's own solve, from the elastic–viscous predictor Φ_trial/(ε + η t_N/Δt)
         // (as a warm start; from Δλ = 0, where R = Φ_trial and dα/dΔλ = −α_n/D_c in both state
         // steps, when the predictor is beyond the bracket).
-        // Where R' < 0 is not certain on [0, hi], R may have three roots, and the step takes the
-        // first (slip_first_root.hpp).
+        // R may have three roots; the step takes the first (slip_first_root.hpp).
         const double phiTrial = in.phiTrial;
         const double dR0 = -(eps + visc) + tN * c1 * invR * e0 * st.alpha * invDc;
         const SlipShape shape{constantRate, st.alpha, c2dt, invDc, invR, tN * c1 * invR, eps + visc};
         auto evalR = [&](double xx, double& Rx, double& dRx) { eval(xx, Rx, dRx, alpha); };
         const double ftol = 1e-12 * (a + tN);
-        const SlipRoot root = slopeRangeEverywhere(shape, e0).max < 0.0
-                                  ? solveSlip(evalR, 0.0, phiTrial, dR0, 0.0, hi, phiTrial / (eps + visc), ftol)
-                                  : solveFirstSlip(evalR, shape, phiTrial, dR0, 0.0, hi, ftol);
+        const SlipRoot root = solveSlipFirstRoot(evalR, shape, e0, phiTrial, dR0, hi, phiTrial / (eps + visc), ftol);
         x = root.x;
         dR = root.dR;
         res.iterations = root.iterations;

@@ -1,7 +1,8 @@
 // The first-root search of the return maps' slip solve (core/friction/slip_first_root.hpp):
 // its slope bounds hold (sampled R' inside them), and on residuals with three roots it returns
 // the first one, where a dense scan of R finds it; on residuals with one root it agrees with
-// the ordinary solve.
+// the ordinary solve; solveSlipFirstRoot, the laws' entry, keeps the ordinary solve's result
+// where it is the first root.
 #include <QtTest>
 
 #include <cmath>
@@ -104,7 +105,7 @@ private slots:
     void returnsTheFirstRoot() {
         std::mt19937_64 rng(5);
         std::uniform_real_distribution<double> u(0.0, 1.0);
-        int multiple = 0, single = 0, predictorMisses = 0;
+        int multiple = 0, single = 0, predictorMisses = 0, ordinaryIsFirst = 0, keptBitForBit = 0;
         long evaluations = 0;
         for (int trial = 0; trial < 3000; ++trial) {
             Residual q = randomResidual(rng, trial % 2 == 1);
@@ -120,6 +121,17 @@ private slots:
             if (!(R0 > 0.0 && Rhi <= 0.0)) continue;
             const double ftol = 1e-13 * (q.a + 1.0);
             const SlipRoot f = solveFirstSlip(q, q.s, R0, dR0, 0.0, hi, ftol);
+            // The laws' entry: the same first root; bit for bit the ordinary solve where that is it.
+            const double hint = phi / q.s.k;
+            const SlipRoot g = solveSlipFirstRoot(q, q.s, e0, R0, dR0, hi, hint, ftol);
+            const SlipRoot ordinary = solveSlip(q, 0.0, R0, dR0, 0.0, hi, hint, ftol);
+            QVERIFY(g.converged);
+            QVERIFY2(std::abs(g.x - f.x) <= 1e-9 * f.x + 1e-12 * hi, qPrintable(QString("%1 vs %2").arg(g.x).arg(f.x)));
+            if (slopeRangeOn(q.s, 0.0, ordinary.x).max < 0.0) {  // certainly the first root: kept as it is
+                QVERIFY(g.x == ordinary.x && g.R == ordinary.R && g.iterations == ordinary.iterations);
+                ++keptBitForBit;
+            }
+            if (std::abs(ordinary.x - f.x) <= 1e-9 * f.x + 1e-12 * hi) ++ordinaryIsFirst;
             QVERIFY(f.converged);
             QVERIFY2(std::abs(f.R) <= 1e-9 * (q.a + q.s.k * f.x) || f.R <= 0.0, qPrintable(QString::number(f.R)));
             // No root before f.x: R > 0 on a dense grid below it (to the grid's resolution).
@@ -158,6 +170,9 @@ private slots:
               "root on %d; %.1f evaluations per search",
               multiple, single, predictorMisses, double(evaluations) / (multiple + single));
         QVERIFY(predictorMisses > 0);  // the residuals include the case the search exists for
+        qInfo("the ordinary solve's root is the first on %d; certainly so, and kept bit for bit, on %d",
+              ordinaryIsFirst, keptBitForBit);
+        QVERIFY(keptBitForBit > 0);
         QVERIFY(multiple >= 50);
         QVERIFY(single >= 50);
     }
