@@ -65,6 +65,9 @@ struct Round {
     // residual), made once: every candidate's noise null in the round is around the same point.
     std::vector<double> numerics[2];
     int numericsMade[2] = {0, 0};  // 0 not yet, 1 made, −1 failed
+    // Candidate fits not scored because their size ended on a physical bound (fitCandidate): still
+    // fits of models that contain the current one (polishFinalModel).
+    std::vector<Tried> onBound;
 
     std::string label() const { return "round " + std::to_string(number); }
     const FitOutcome& segBaseline(Loop& L) {
@@ -204,6 +207,7 @@ std::optional<Tried> fitCandidate(Loop& L, Round& R, const std::string& c, const
                       " bound from two starts (scanned, and halfway to the bound): the data's answer, not a solver "
                       "failure; not identified (dBIC " + fmt(t.sc.deltaBic) + " not credited)";
         L.scores[c] = t.sc;
+        R.onBound.push_back(std::move(t));
         return std::nullopt;
     }
     return t;
@@ -402,7 +406,10 @@ bool runRound(Loop& L, int number, const std::vector<std::string>& cands, const 
         if (std::optional<Tried> t = fitCandidate(L, R, c, prev != previous.end() ? &*prev : nullptr))
             tried.push_back(std::move(*t));
     }
-    if (tried.empty()) return false;
+    if (tried.empty()) {
+        L.lastOnBound = std::move(R.onBound);
+        return false;
+    }
     // The current model's guard against its own local minimum (in round 1 the baseline's).
     // Each restart lowers the current model's BIC by more than the margin; at most
     // kRestarts per round, a bound on the cost only. The round's scores are dropped: it is
@@ -424,7 +431,10 @@ bool runRound(Loop& L, int number, const std::vector<std::string>& cands, const 
         for (AddedEffect& ae : L.res.effectsAdded)
             if (ae.name == t.sc.confoundedWith) ae.confoundedWith.push_back(t.sc.name);
     }
-    if (chosen < 0) return false;
+    if (chosen < 0) {
+        L.lastOnBound = std::move(R.onBound);
+        return false;
+    }
     addEffect(L, R, tried[static_cast<size_t>(chosen)], me, heldOutRef);
     return true;
 }
@@ -531,14 +541,20 @@ void runLoop(Loop& L, const std::vector<IdentifyRun>& runs) {
     }
     if (!fitBaseline(L, runs)) return;
     res.residual = L.residualName(L.spec);
+    bool lastRoundAddedNothing = false;
     for (int round = 1; round <= opt.maxEffects; ++round) {
         if (L.cancelled()) {
             res.cancelled = true;
             break;
         }
-        if (!runRound(L, round, cands)) break;
+        if (!runRound(L, round, cands)) {
+            lastRoundAddedNothing = true;
+            break;
+        }
     }
-    if (!L.res.effectsAdded.empty() && !L.cancelled()) dropVanishedEffects(L);
+    const int dropped = !L.res.effectsAdded.empty() && !L.cancelled() ? dropVanishedEffects(L) : 0;
+    // The verdicts are made; the final model is reported at the best minimum the last round saw.
+    if (L.opt.heldOutRestart && lastRoundAddedNothing && dropped == 0 && !L.cancelled()) polishFinalModel(L);
     // The self-test around the final baseline (round 1 may have refitted it, restartFromCandidates).
     if (opt.selfTest.replicas > 0 && !L.cancelled()) {
         L.progress("self-test", 0.0);

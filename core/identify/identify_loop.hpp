@@ -38,6 +38,8 @@ struct Loop {
     std::vector<std::vector<double>> predBefore;
     std::map<std::string, CandidateScore> scores;
     int roundRestarts = 0;  // restartFromCandidates taken in the current round
+    // The last round's candidate fits whose size ended on a physical bound (polishFinalModel).
+    std::vector<Tried> lastOnBound;
     Spec baseSpec;             // the baseline as adopted (adoptBaseline), for the self-test
     FitOutcome baseFit;
     Clock::time_point t0;  // when identifyEffects began (IdentifyResult::timeline)
@@ -110,6 +112,11 @@ std::string checkBaselineBounds(Loop& L);
 // The same guard from the candidates of a round (details in identify_restart.cpp). True when the
 // current model changed (the round must be fitted again).
 bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried);
+// After the loop, when its last round added nothing and the backward check dropped nothing: that
+// round's candidates whose size ended on a physical bound (L.lastOnBound) are fits of models that
+// contain the final one, so starts for it (details in identify_restart.cpp). True when the final
+// model was refitted; the verdicts are not revisited.
+bool polishFinalModel(Loop& L);
 // The backward check of the final model (identify_backward.cpp): an added effect whose size has
 // vanished in the final fit (it fails the size test there) and whose removal, with the model
 // refitted without it, does not raise the BIC by more than the margin is dropped, and the model
