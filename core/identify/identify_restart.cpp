@@ -189,30 +189,32 @@ void adoptCurrent(Loop& L, const std::string& note) {
     if (!heldOutNote.empty()) last.note += "; " + heldOutNote;
 }
 
-// The same guard from the other side (IdentifyOptions::heldOutRestart): every candidate
-// contains the current model (the baseline and the effects added so far; its own effect absent),
-// so a candidate's fitted point with its effect removed is a start for the current model. When
-// such a point fits the fit runs better than the current model did by more than the margin
-// (restartWorthIt), the current fit stopped in a worse minimum: it is refitted from the best such
-// point and kept if it ends lower. Otherwise every candidate would gain the current model's own
-// missed improvement and look like an effect. True when the current model changed (the round
-// must be fitted again).
-bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried) {
+namespace {
+
+// The core both candidate guards share (restartFromCandidates, polishFinalModel): the current
+// model refitted from the best of `fits`' points with their effect removed (tryRestart), adopted
+// when it ends lower, with a note of what was found.
+bool restartFromFits(Loop& L, const std::vector<Tried>& fits, bool finalModel) {
     std::vector<std::map<std::string, double>> points;
     std::vector<std::string> from;
-    for (const Tried& t : tried) {
+    for (const Tried& t : fits) {
         if (t.spec.segments != L.spec.segments) continue;
         points.push_back(withoutEffect(L.cx, L.spec, t.sc.name, t.fit.values));
         from.push_back(t.sc.name);
     }
-    RestartTry r =
-        tryRestart(L, L.spec, L.cur, points, [&](int best) { return "refit of the current model from " + from[best] + "'s point"; });
+    if (points.empty()) return false;
+    const std::string which = finalModel ? "final" : "current";
+    RestartTry r = tryRestart(L, L.spec, L.cur, points,
+                              [&](int best) { return "refit of the " + which + " model from " + from[best] + "'s point"; });
     if (!r.lowers(L.cur)) return false;
     const std::string model = L.spec.effects.empty() ? "baseline" : "model with " + L.res.effectsAdded.back().name;
-    const std::string note = "the " + from[r.best] + " fit's point with the effect removed fitted all runs at sum of squares " +
-                             std::to_string(r.bestSS) + " against the " + model + "'s " + std::to_string(L.cur.ss) +
-                             " (BIC lower by " + std::to_string(r.gain) + "): the " + model +
-                             " stopped in a worse minimum and was refitted from that point (" + std::to_string(r.refit.ss) + ")";
+    const std::string note = std::string(finalModel ? "after the last round, " : "") + "the " + from[r.best] + " fit's point" +
+                             (finalModel ? " (its size on a physical bound)" : "") +
+                             " with the effect removed fitted all runs at sum of squares " + std::to_string(r.bestSS) +
+                             " against the " + model + "'s " + std::to_string(L.cur.ss) + " (BIC lower by " +
+                             std::to_string(r.gain) + "): " +
+                             (finalModel ? "the final model" : "the " + model + " stopped in a worse minimum and") +
+                             " was refitted from that point (" + std::to_string(r.refit.ss) + ")";
     L.cur = std::move(r.refit);
     if (L.spec.effects.empty())
         adoptBaseline(L, L.res.baselineNote.empty() ? note : L.res.baselineNote + "; " + note);
@@ -221,9 +223,17 @@ bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried) {
     return true;
 }
 
-}  // namespace stickslip::identify::detail
+}  // namespace
 
-namespace stickslip::identify::detail {
+// The same guard from the other side (IdentifyOptions::heldOutRestart): every candidate
+// contains the current model (the baseline and the effects added so far; its own effect absent),
+// so a candidate's fitted point with its effect removed is a start for the current model. When
+// such a point fits the fit runs better than the current model did by more than the margin
+// (restartWorthIt), the current fit stopped in a worse minimum: it is refitted from the best such
+// point and kept if it ends lower. Otherwise every candidate would gain the current model's own
+// missed improvement and look like an effect. True when the current model changed (the round
+// must be fitted again).
+bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried) { return restartFromFits(L, tried, false); }
 
 // A candidate whose size ends on the bound where its effect vanishes is, at its fitted point, the
 // current model at another point: when that point fits better by more than the margin, the
@@ -233,28 +243,6 @@ namespace stickslip::identify::detail {
 // candidate the round could select; starting the rounds over from these points too let near-tied
 // minima change verdicts (D04: a baseline lower by 3.3 in BIC, then a false sensor mass;
 // docs/identify-results.md, session 55). Once the verdicts are made they serve the final model.
-bool polishFinalModel(Loop& L) {
-    std::vector<std::map<std::string, double>> points;
-    std::vector<std::string> from;
-    for (const Tried& t : L.lastOnBound) {
-        if (t.spec.segments != L.spec.segments) continue;
-        points.push_back(withoutEffect(L.cx, L.spec, t.sc.name, t.fit.values));
-        from.push_back(t.sc.name);
-    }
-    if (points.empty()) return false;
-    RestartTry r = tryRestart(L, L.spec, L.cur, points, [&](int best) { return "refit of the final model from " + from[best] + "'s point"; });
-    if (!r.lowers(L.cur)) return false;
-    const std::string model = L.spec.effects.empty() ? "baseline" : "model with " + L.res.effectsAdded.back().name;
-    const std::string note = "after the last round, the " + from[r.best] + " fit's point (its size on a physical bound) with the "
-                             "effect removed fitted all runs at sum of squares " + std::to_string(r.bestSS) + " against the " +
-                             model + "'s " + std::to_string(L.cur.ss) + " (BIC lower by " + std::to_string(r.gain) +
-                             "): the final model was refitted from that point (" + std::to_string(r.refit.ss) + ")";
-    L.cur = std::move(r.refit);
-    if (L.spec.effects.empty())
-        adoptBaseline(L, L.res.baselineNote.empty() ? note : L.res.baselineNote + "; " + note);
-    else
-        adoptCurrent(L, note);
-    return true;
-}
+bool polishFinalModel(Loop& L) { return restartFromFits(L, L.lastOnBound, true); }
 
 }  // namespace stickslip::identify::detail
