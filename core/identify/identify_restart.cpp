@@ -235,8 +235,9 @@ bool restartFromFits(Loop& L, const std::vector<Tried>& fits, bool finalModel) {
 // must be fitted again).
 bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried) { return restartFromFits(L, tried, false); }
 
-// A candidate whose size ends on the bound where its effect vanishes is, at its fitted point, the
-// current model at another point: when that point fits better by more than the margin, the
+// A candidate whose size ended on a physical bound is not scored, but its point with the effect
+// removed is still a start for the current model; on the bound where the effect vanishes it is the
+// current model at another point. When such a point fits better by more than the margin, the
 // current model stopped in a worse minimum (D06 in session 54: frictional_lag's τ on its lower
 // bound at sum of squares 52.2 against the final model's 92.6). restartFromCandidates takes the
 // scored candidates only, so that a round is re-run on a refitted model only on evidence from a
