@@ -31,7 +31,7 @@ endfunction()
 
 # stickslip_pch_shared(target group header...): the first target of `group` builds the
 # precompiled header, the others reuse it (one .gch for many small executables, e.g. the
-# tests). A group's targets must be compiled with the same flags and with the same
+# tests), whose sources include their own moc output. A group's targets must be compiled with the same flags and with the same
 # definitions of any macro the headers read (GCC ignores a .gch that does not match and reads
 # the headers as text: slower, never wrong).
 function(stickslip_pch_shared target group)
@@ -45,5 +45,14 @@ function(stickslip_pch_shared target group)
   else()
     set_property(GLOBAL PROPERTY ${key} ${target})
     target_precompile_headers(${target} PRIVATE ${ARGN})
+  endif()
+  # The tests include their moc output (`#include "tst_x.moc"`), so AUTOMOC's
+  # mocs_compilation.cpp is empty; with the precompiled header it would still load the whole
+  # .gch: 2.5 s of compile against 0.07 s without (2026-12-05), for each of ~70 tests. A
+  # library's non-empty one keeps it (the GUI library's: 8.7 s with, 11.6 s without).
+  get_target_property(automoc ${target} AUTOMOC)
+  if(automoc)
+    set_source_files_properties("${CMAKE_CURRENT_BINARY_DIR}/${target}_autogen/mocs_compilation.cpp"
+                                PROPERTIES SKIP_PRECOMPILE_HEADERS ON)
   endif()
 endfunction()
