@@ -31,9 +31,9 @@ endfunction()
 
 # stickslip_pch_shared(target group header...): the first target of `group` builds the
 # precompiled header, the others reuse it (one .gch for many small executables, e.g. the
-# tests), whose sources include their own moc output. A group's targets must be compiled with the same flags and with the same
-# definitions of any macro the headers read (GCC ignores a .gch that does not match and reads
-# the headers as text: slower, never wrong).
+# tests, whose sources include their own moc output). A group's targets must be compiled with
+# the same flags and with the same definitions of any macro the headers read (GCC ignores a .gch
+# that does not match and reads the headers as text: slower, never wrong).
 function(stickslip_pch_shared target group)
   if(NOT STICKSLIP_PCH OR STICKSLIP_FUZZ)
     return()
