@@ -339,22 +339,39 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
     }
     me.fitNrmse = fitN > 0 ? std::sqrt(fitSS / fitN) : 0.0;
     if (valIdx.empty() && fitIdx.size() >= 2) {
-        // Leave one run out in turn, warm-started from the full fit.
-        for (size_t h : fitIdx) {
-            if (cx.opt->cancel && cx.opt->cancel->load()) break;
+        // Leave one run out in turn, warm-started from the full fit. The refits are independent:
+        // one per core (parallelFor), each writing its own slot, gathered in run order below.
+        struct Refit {
+            bool fitted = false, predicted = false;
+            std::map<std::string, double> values;
+            double ss = 0, n = 0;
+            long fits = 0;
+        };
+        std::vector<Refit> refits(fitIdx.size());
+        parallelFor(fitIdx.size(), [&](size_t k) {
+            if (cx.opt->cancel && cx.opt->cancel->load()) return;
+            const size_t h = fitIdx[k];
             std::vector<size_t> rest;
             for (size_t i : fitIdx) if (i != h) rest.push_back(i);
-            const FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, fits, false, FitStart::NearOptimum,
-                                           FitOutput::ValuesOnly);
-            if (!f.ok) continue;
-            if (loo) loo->push_back(f.values);
+            Refit& o = refits[k];
+            FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, o.fits, false, FitStart::NearOptimum,
+                                   FitOutput::ValuesOnly);
+            if (!f.ok) return;
+            o.fitted = true;
+            o.values = std::move(f.values);
             double mh = kNaN;
-            const ExtendedModel mo = buildModel(cx, spec, f.values, mh);
+            const ExtendedModel mo = buildModel(cx, spec, o.values, mh);
             std::vector<double> r;
-            double ss = 0, n = 0;
-            if (!runResiduals(cx, cx.runs[h], mo, mh, r, ss, n, nullptr, nullptr, nullptr, spec.segments)) continue;
-            me.runs[h].heldOutNrmse = n > 0 ? std::sqrt(ss / n) : 0.0;
-            valSS += ss; valN += n;
+            o.predicted = runResiduals(cx, cx.runs[h], mo, mh, r, o.ss, o.n, nullptr, nullptr, nullptr, spec.segments);
+        });
+        for (size_t k = 0; k < fitIdx.size(); ++k) {
+            const Refit& o = refits[k];
+            fits += o.fits;
+            if (!o.fitted) continue;
+            if (loo) loo->push_back(o.values);
+            if (!o.predicted) continue;
+            me.runs[fitIdx[k]].heldOutNrmse = o.n > 0 ? std::sqrt(o.ss / o.n) : 0.0;
+            valSS += o.ss; valN += o.n;
         }
     }
     me.validationNrmse = valN > 0 ? std::sqrt(valSS / valN) : kNaN;

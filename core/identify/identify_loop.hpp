@@ -40,6 +40,8 @@ struct Loop {
     int roundRestarts = 0;  // restartFromCandidates taken in the current round
     // The last round's candidate fits whose size ended on a physical bound (polishFinalModel).
     std::vector<Tried> lastOnBound;
+    // Wall time of each candidate's last fit (runRound's scheduling order only).
+    std::map<std::string, double> candidateSeconds;
     Spec baseSpec;             // the baseline as adopted (adoptBaseline), for the self-test
     FitOutcome baseFit;
     Clock::time_point t0;  // when identifyEffects began (IdentifyResult::timeline)

@@ -1,10 +1,14 @@
 // fitSpec (identify_fit.cpp), the identify loop's one fit of a model to runs: its second pass in
 // the law's own coordinates C1, η, v_c is for fits in the steady-state curve's coordinates that
-// met the edge of their feasible region, not for those that start at their optimum. Prescribed
-// runs made by the project's own simulator (identify_synth.hpp).
+// met the edge of their feasible region, not for those that start at their optimum. errorsOf's
+// leave-one-run-out refits and the loop's parallelFor: the same numbers on any thread layout.
+// Prescribed runs made by the project's own simulator (identify_synth.hpp).
 #include <QtTest/QtTest>
 
 #include <cmath>
+#include <mutex>
+#include <set>
+#include <thread>
 
 #include "core/identify/identify_internal.hpp"
 #include "identify_synth.hpp"
@@ -52,6 +56,69 @@ private slots:
             f = std::move(g);
         }
         QVERIFY2(stalled, "no refit ended at its start: the premise of this test does not hold");
+    }
+
+    // A parallelFor inside another's task runs on that task's thread (identify_internal.hpp):
+    // every index once, and the caller's thread is outside any task again afterwards.
+    void nestedParallelForRunsOnTheTasksThread() {
+        constexpr size_t kOuter = 5, kInner = 7;
+        std::vector<std::thread::id> outerId(kOuter);
+        std::vector<std::vector<std::thread::id>> innerId(kOuter, std::vector<std::thread::id>(kInner));
+        std::vector<int> hits(kOuter * kInner, 0);
+        parallelFor(kOuter, [&](size_t i) {
+            outerId[i] = std::this_thread::get_id();
+            QVERIFY(tInParallelTask);
+            parallelFor(kInner, [&](size_t j) {
+                innerId[i][j] = std::this_thread::get_id();
+                hits[i * kInner + j] += 1;
+            });
+        });
+        QVERIFY(!tInParallelTask);
+        for (int h : hits) QCOMPARE(h, 1);
+        for (size_t i = 0; i < kOuter; ++i)
+            for (size_t j = 0; j < kInner; ++j) QVERIFY(innerId[i][j] == outerId[i]);
+        // Outside any task the loop still spreads over the cores (each index once).
+        std::set<std::thread::id> ids;
+        std::mutex m;
+        std::vector<int> flat(64, 0);
+        parallelFor(flat.size(), [&](size_t k) {
+            flat[k] += 1;
+            const std::lock_guard<std::mutex> lock(m);
+            ids.insert(std::this_thread::get_id());
+        });
+        for (int h : flat) QCOMPARE(h, 1);
+        QVERIFY(ids.size() >= 1 && ids.size() <= std::max(1u, std::thread::hardware_concurrency()));
+    }
+
+    // errorsOf runs its leave-one-run-out refits one per core; called from inside a task (where
+    // everything runs on one thread) it gives the same numbers: held-out errors, refits and the
+    // count of fits, bit for bit.
+    void leaveOneRunOutErrorsDoNotDependOnTheThreads() {
+        IdentifyOptions opt = synth::testOptions();
+        std::vector<IdentifyRun> runs = synth::makeRuns(synth::trueModel(), 2.0, 0.02, 1);
+        Context cx;
+        int dec = 0;
+        std::string why;
+        QVERIFY2(prepareContext(runs, opt, cx, dec, why), why.c_str());
+        const std::vector<size_t> idx = {0, 1, 2, 3};
+        const Spec spec;
+        long fits = 0;
+        const FitOutcome f = fitSpec(cx, spec, baselineStart(cx, idx), idx, 1, fits, true);
+        QVERIFY2(f.ok, f.message.c_str());
+        long fitsSpread = 0, fitsOne = 0;
+        std::vector<std::map<std::string, double>> looSpread, looOne;
+        const ModelErrors spread = errorsOf(cx, spec, f, idx, {}, fitsSpread, &looSpread);
+        ModelErrors one;
+        parallelFor(1, [&](size_t) { one = errorsOf(cx, spec, f, idx, {}, fitsOne, &looOne); });
+        QCOMPARE(fitsSpread, static_cast<long>(idx.size()));
+        QCOMPARE(fitsOne, fitsSpread);
+        QCOMPARE(looOne.size(), idx.size());
+        QVERIFY(looOne == looSpread);
+        QVERIFY(std::isfinite(spread.validationNrmse));
+        QVERIFY(one.validationNrmse == spread.validationNrmse);  // bit for bit (QCOMPARE's is fuzzy)
+        QVERIFY(one.fitNrmse == spread.fitNrmse);
+        QCOMPARE(one.runs.size(), spread.runs.size());
+        for (size_t i = 0; i < one.runs.size(); ++i) QVERIFY(one.runs[i].heldOutNrmse == spread.runs[i].heldOutNrmse);
     }
 };
 
