@@ -86,6 +86,54 @@ struct Loop {
     }
 };
 
+// One round of the loop: the current model's criterion, and its view refitted with the segment
+// residual (for the stick-phase candidates of the Auto residual), made lazily, at most once per
+// round.
+struct Round {
+    int number = 0;
+    double bicCur = 0;
+    Spec segSpec;
+    FitOutcome segBase;
+    bool segBaseTried = false;
+    ModelErrors segBaseErrors;
+    bool segBaseErrorsDone = false;
+    // The current model's numerical part (numericsOffset), per residual ([1]: the segment
+    // residual), made once: every candidate's noise null in the round is around the same point.
+    std::vector<double> numerics[2];
+    int numericsMade[2] = {0, 0};  // 0 not yet, 1 made, −1 failed
+    // Candidate fits not scored because their size ended on a physical bound (fitCandidate): still
+    // fits of models that contain the current one (polishFinalModel).
+    std::vector<Tried> onBound;
+
+    std::string label() const { return "round " + std::to_string(number); }
+    const FitOutcome& segBaseline(Loop& L) {
+        if (!segBaseTried) {
+            segBaseTried = true;
+            L.progress(label() + ": baseline with the segment residual", 0.0);
+            segBase = fitSpec(L.cx, segSpec, L.cur.values, L.fitIdx, 1, L.res.fits);
+        }
+        return segBase;
+    }
+    const ModelErrors& segBaselineErrors(Loop& L) {
+        if (!segBaseErrorsDone) {
+            L.progress(label() + ": held-out check of the segment baseline", 1.0);
+            segBaseErrors = errorsOf(L.cx, segSpec, segBase, L.fitIdx, L.valIdx, L.res.fits);
+            segBaseErrorsDone = true;
+        }
+        return segBaseErrors;
+    }
+};
+
+// The candidate's figures from its fit: ΔBIC against the model it extends, fit error, its
+// parameters and how its size trades off with the others (identify_candidates.cpp).
+void scoreFit(const Loop& L, Tried& t);
+// Every candidate of `cands` not yet in the model fitted on top of the current one, the fits one
+// per core (identify_candidates.cpp): the scored ones in catalogue order; the others get their
+// reason in L.scores, and those whose size ended on a physical bound go to R.onBound. `previous`:
+// the round's candidate fits before the current model was refitted (a restart), as starts.
+std::vector<Tried> fitCandidates(Loop& L, Round& R, const std::vector<std::string>& cands,
+                                 const std::vector<Tried>& previous);
+
 // The parameters of `effect` in a fit, without the "effect." prefix (a candidate's or an added
 // effect's row in the report).
 inline std::vector<ParamEstimate> effectParams(const FitOutcome& f, const std::string& effect) {
