@@ -326,6 +326,10 @@ struct CandidateScore {
     std::string startNote;       // a first start that failed (ended above the current model, or on a bound) and was retried
     static constexpr double kNoTest = -1.0;
     std::string residual = "equation_error";  // dynamics: "equation_error" or "segments"; prescribed: "prescribed"
+    // The candidate's fit in its round: wall time on its own thread (the round's candidates are
+    // fitted one per core, so the timeline has one stage for all of them) and the fits it took.
+    double fitWall_s = 0;
+    long fits = 0;
 };
 
 struct AddedEffect {

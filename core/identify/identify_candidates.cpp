@@ -176,6 +176,8 @@ std::vector<Tried> fitCandidates(Loop& L, Round& R, const std::vector<std::strin
         if (!f.ran) continue;
         L.candidateSeconds[todo[k]] = seconds[k];
         L.res.fits += f.fits;
+        for (CandidateScore* sc : {&f.score, f.scored ? &f.scored->sc : nullptr})
+            if (sc) sc->fitWall_s = seconds[k], sc->fits = f.fits;
         if (f.scored) tried.push_back(std::move(*f.scored));
         else L.scores[f.score.name] = f.score;
         if (f.onBound) R.onBound.push_back(std::move(*f.onBound));

@@ -121,6 +121,7 @@ nlohmann::json candidateJson(const CandidateScore& c) {
                                      {"n_eff_limit", c.neffLimit.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.neffLimit)},
                                      {"held_out_nrmse", c.heldOutNrmse >= 0 ? num(c.heldOutNrmse) : nlohmann::json(nullptr)}}},
                           {"residual", c.residual},
+                          {"fit", {{"wall_s", num(c.fitWall_s)}, {"fits", c.fits}}},
                           {"held_out_test", c.heldOutUnits == 0 ? nlohmann::json(nullptr)
                                                                 : nlohmann::json{{"runs", c.heldOutUnits},
                                                                                  {"mean_log_mse_ratio", num(c.heldOutMeanLogRatio)},

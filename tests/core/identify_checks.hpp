@@ -46,12 +46,24 @@ inline void verifyTimeline(const stickslip::identify::IdentifyResult& r) {
     }
     QCOMPARE(fits, r.fits);
     QVERIFY(r.timeline.front().fits >= 1);  // the baseline's own fit
+    // Each candidate's own fit (its round's candidates share one stage): a wall time and the
+    // fits it took, at most the loop's; every scored candidate took at least one.
+    long candidateFits = 0;
+    for (const stickslip::identify::CandidateScore& c : r.candidates) {
+        QVERIFY(c.fitWall_s >= 0.0 && c.fitWall_s <= r.wallTime_s);
+        QVERIFY(c.fits >= 0);
+        if (std::isfinite(c.deltaBic) && c.deltaBic != 0.0) QVERIFY(c.fits >= 1);
+        candidateFits += c.fits;
+    }
+    QVERIFY(candidateFits <= r.fits);
     QVERIFY(prevEnd <= r.wallTime_s);
     QVERIFY(r.wallTime_s - prevEnd < 0.01 * r.wallTime_s + 0.5);
     const auto j = toJson(r);
     QCOMPARE(j["timeline"].size(), r.timeline.size());
     QCOMPARE(j["timeline"][0]["stage"].get<std::string>(), std::string("baseline"));
     QCOMPARE(j["timeline"][0]["fits"].get<long>(), r.timeline.front().fits);
+    for (size_t i = 0; i < r.candidates.size(); ++i)
+        QCOMPARE(j["candidates"][i]["fit"]["fits"].get<long>(), r.candidates[i].fits);
 }
 
 }  // namespace synth
