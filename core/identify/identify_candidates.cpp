@@ -140,9 +140,10 @@ std::vector<Tried> fitCandidates(Loop& L, Round& R, const std::vector<std::strin
         !L.cancelled())
         R.segBaseline(L);
     // The candidates are fitted at the same time, one per core (each fit's own batches then run
-    // on its thread, parallelFor): independent fits keep both cores busy where one fit's
-    // batches left a core idle. The outcome does not depend on the thread count or the order
-    // in which the fits finish: each writes only its own slot, merged below in catalogue order.
+    // on its thread, parallelFor), instead of one fit's batches over the cores, whose unequal
+    // runs leave a core idle (measured: the damper ~12 % faster, D01 unchanged; session 57 in
+    // docs/identify-results.md). The outcome does not depend on the thread count or the order in
+    // which the fits finish: each writes only its own slot, merged below in catalogue order.
     // Longest first by what each took last time (the previous round's, or this round's before
     // a restart), so that no long fit starts last: only the wall time depends on this order.
     std::vector<size_t> order(todo.size());

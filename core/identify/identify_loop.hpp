@@ -40,7 +40,7 @@ struct Loop {
     int roundRestarts = 0;  // restartFromCandidates taken in the current round
     // The last round's candidate fits whose size ended on a physical bound (polishFinalModel).
     std::vector<Tried> lastOnBound;
-    // Wall time of each candidate's last fit (runRound's scheduling order only).
+    // Wall time of each candidate's last fit (fitCandidates' scheduling order only).
     std::map<std::string, double> candidateSeconds;
     Spec baseSpec;             // the baseline as adopted (adoptBaseline), for the self-test
     FitOutcome baseFit;
