@@ -17,6 +17,22 @@ using namespace stickslip;
 using namespace stickslip::identify;
 using namespace stickslip::identify::detail;
 
+// Four prescribed runs of the project's own simulator, prepared as identify prepares them (the
+// context points into the options and the runs, so the three live together and stay put).
+struct PreparedRuns {
+    IdentifyOptions opt = synth::testOptions();
+    std::vector<IdentifyRun> runs = synth::makeRuns(synth::trueModel(), 2.0, 0.02, 1);
+    Context cx;
+    std::string why;
+    bool ok = false;
+    PreparedRuns() {
+        int dec = 0;
+        ok = prepareContext(runs, opt, cx, dec, why);
+    }
+    PreparedRuns(const PreparedRuns&) = delete;
+    PreparedRuns& operator=(const PreparedRuns&) = delete;
+};
+
 class TestIdentifyFit : public QObject {
     Q_OBJECT
 private slots:
@@ -26,13 +42,10 @@ private slots:
     // nothing the first did not. It is one fit, and the curve coordinates never left C1's and
     // η's bounds.
     void aStartAtItsOptimumIsFittedOnce() {
-        IdentifyOptions opt = synth::testOptions();
-        std::vector<IdentifyRun> runs = synth::makeRuns(synth::trueModel(), 2.0, 0.02, 1);
-        Context cx;
-        int dec = 0;
-        std::string why;
-        QVERIFY2(prepareContext(runs, opt, cx, dec, why), why.c_str());
-        QVERIFY(opt.curveCoordinates);
+        const PreparedRuns p;
+        QVERIFY2(p.ok, p.why.c_str());
+        const Context& cx = p.cx;
+        QVERIFY(p.opt.curveCoordinates);
         const std::vector<size_t> idx = {0, 1, 2, 3};
         const Spec spec;
         long fits = 0;
@@ -94,12 +107,9 @@ private slots:
     // everything runs on one thread) it gives the same numbers: held-out errors, refits and the
     // count of fits, bit for bit.
     void leaveOneRunOutErrorsDoNotDependOnTheThreads() {
-        IdentifyOptions opt = synth::testOptions();
-        std::vector<IdentifyRun> runs = synth::makeRuns(synth::trueModel(), 2.0, 0.02, 1);
-        Context cx;
-        int dec = 0;
-        std::string why;
-        QVERIFY2(prepareContext(runs, opt, cx, dec, why), why.c_str());
+        const PreparedRuns p;
+        QVERIFY2(p.ok, p.why.c_str());
+        const Context& cx = p.cx;
         const std::vector<size_t> idx = {0, 1, 2, 3};
         const Spec spec;
         long fits = 0;
