@@ -34,13 +34,14 @@ bool needsSegmentBaseline(const Loop& L, const std::string& c) {
 }
 
 // A candidate's fit (fitCandidate): scored, or not, with the reason in `score` (and, when its
-// size ended on a physical bound, the fit in `onBound`), and the fits it took.
+// size ended on a physical bound, the fit in `onBound`), the fits it took and its wall time.
 struct CandidateFit {
     bool ran = false;
     std::optional<Tried> scored;
     CandidateScore score;
     std::optional<Tried> onBound;
     long fits = 0;
+    double wall_s = 0;
 };
 
 // Fits candidate c on top of the current model (warm start from a scan around the current
@@ -154,7 +155,6 @@ std::vector<Tried> fitCandidates(Loop& L, Round& R, const std::vector<std::strin
     };
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return took(a) > took(b); });
     std::vector<CandidateFit> fitted(todo.size());
-    std::vector<double> seconds(todo.size(), 0.0);
     if (!L.cancelled()) {
         L.progress(R.label() + ": " + std::to_string(todo.size()) + " candidate fits", 0.0);
         std::mutex reporting;
@@ -164,7 +164,7 @@ std::vector<Tried> fitCandidates(Loop& L, Round& R, const std::vector<std::strin
             if (L.cancelled()) return;
             const auto t0 = Clock::now();
             fitted[k] = fitCandidate(L, R, todo[k], prevs[k]);
-            seconds[k] = std::chrono::duration<double>(Clock::now() - t0).count();
+            fitted[k].wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
             const std::lock_guard<std::mutex> lock(reporting);
             ++done;
             if (L.opt.progress)
@@ -175,10 +175,11 @@ std::vector<Tried> fitCandidates(Loop& L, Round& R, const std::vector<std::strin
     for (size_t k = 0; k < fitted.size(); ++k) {
         CandidateFit& f = fitted[k];
         if (!f.ran) continue;
-        L.candidateSeconds[todo[k]] = seconds[k];
+        L.candidateSeconds[todo[k]] = f.wall_s;
         L.res.fits += f.fits;
-        for (CandidateScore* sc : {&f.score, f.scored ? &f.scored->sc : nullptr})
-            if (sc) sc->fitWall_s = seconds[k], sc->fits = f.fits;
+        CandidateScore& sc = f.scored ? f.scored->sc : f.score;  // the score the report keeps
+        sc.fitWall_s = f.wall_s;
+        sc.fits = f.fits;
         if (f.scored) tried.push_back(std::move(*f.scored));
         else L.scores[f.score.name] = f.score;
         if (f.onBound) R.onBound.push_back(std::move(*f.onBound));
