@@ -367,6 +367,7 @@ BestStart runStarts(const FitProblem& prob, const Mapping& map, PointEvaluator& 
     std::uniform_real_distribution<double> uni(0.1, 0.9);  // random starts stay off the bounds
     BestStart best;
     for (int s = 0; s < prob.multistarts && !best.cancelled; ++s) {
+        const long evalsBefore = res.residualEvaluations;
         std::vector<double> z = startPoint(prob, map, evaluator, s, rng, uni, perStart);
         if (s == 0) z = scannedPoint(prob, map, evaluator, std::move(z), perStart);
         const ceres::Solver::Summary summary = solveFrom(prob, map, evaluator, z, s);
@@ -376,7 +377,7 @@ BestStart runStarts(const FitProblem& prob, const Mapping& map, PointEvaluator& 
         res.startCosts.push_back(usable ? summary.final_cost : std::numeric_limits<double>::quiet_NaN());
         perStart << "start " << s << ": " << (usable ? "cost " + fmt(summary.final_cost) : "failed: " + summary.message)
                  << ", " << summary.iterations.size() << " iterations, " << ceres::TerminationTypeToString(summary.termination_type)
-                 << "\n";
+                 << ", " << (res.residualEvaluations - evalsBefore) << " evaluations\n";
         if (!usable) { best.lastFailure = summary.message; continue; }
         if (summary.final_cost < best.cost) {
             best.cost = summary.final_cost;

@@ -89,6 +89,17 @@ private slots:
         const auto runs = synth::makeRuns(synth::trueModel(), 2.0, 0.02, 1);
         const IdentifyResult good = identifyEffects(runs, o);
         QVERIFY2(good.ok, good.message.c_str());
+        // The report shows the first baseline fit's starts: each one's cost, the one kept (the
+        // lowest) and a summary line per start with its evaluations.
+        const auto starts = toJson(good)["baseline"]["starts"];
+        QCOMPARE(starts["costs"].size(), size_t(2));
+        const int best = starts["best"].get<int>();
+        QVERIFY(best == 0 || best == 1);
+        for (const auto& c : starts["costs"]) QVERIFY(c.is_null() || c.get<double>() >= starts["costs"][best].get<double>());
+        const std::string summary = starts["solver_summary"].get<std::string>();
+        QVERIFY2(summary.find("start 0: cost") != std::string::npos && summary.find("start 1: ") != std::string::npos &&
+                     summary.find(" evaluations\n") != std::string::npos,
+                 summary.c_str());
         o.start.C1 = 0.5;
         o.start.vc_mps = 0.003;
         o.start.eta_s_per_m = 1.0;

@@ -14,7 +14,7 @@ private slots:
         o.preset = "fig20";
         o.model = "coulomb";
         o.sets = {"A=0.4mm", "tN = 7", "cycles=9"};
-        o.cycles = "5";
+        o.cycles = std::string("5");  // not = "5": GCC 12 -O2 warns falsely there (-Wstringop-overflow)
         o.dt = "20us";
         SimParams p;
         std::string err;
