@@ -76,13 +76,19 @@ nlohmann::json toJson(const DatasetFit& f) {
     j["runs"] = runs;
     j["fit_nrmse"] = numOrNull(f.fitNrmse);
     j["validation_nrmse"] = numOrNull(f.validationNrmse);
-    j["solver"] = {{"summary", f.fit.solverSummary}, {"converged", f.fit.converged},
-                   {"cost", numOrNull(f.fit.cost)},  {"residual_rms", numOrNull(f.fit.rms)},
-                   {"residuals", f.fit.residualCount}, {"starts", f.fit.startsTried},
-                   {"stopped_early", f.fit.stoppedEarly},
-                   {"best_start", f.fit.bestStart}, {"evaluations", f.fit.residualEvaluations},
-                   {"wall_time_s", f.fit.wallTime_s}};
+    j["solver"] = toJson(f.fit);
     return j;
+}
+
+nlohmann::json toJson(const FitResult& fit) {
+    nlohmann::json costs = nlohmann::json::array();
+    for (double c : fit.startCosts) costs.push_back(numOrNull(c));
+    return {{"summary", fit.solverSummary}, {"converged", fit.converged},
+            {"cost", numOrNull(fit.cost)},  {"residual_rms", numOrNull(fit.rms)},
+            {"residuals", fit.residualCount}, {"starts", fit.startsTried},
+            {"start_costs", costs},          {"stopped_early", fit.stoppedEarly},
+            {"best_start", fit.bestStart},   {"evaluations", fit.residualEvaluations},
+            {"wall_time_s", fit.wallTime_s}};
 }
 
 nlohmann::json fitReportJson(const std::vector<const DatasetFit*>& fits) {

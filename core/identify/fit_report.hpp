@@ -23,6 +23,12 @@ nlohmann::json toJson(const DatasetFit& fit);
 // under "coulomb" and a per-run "comparison" of the two NRMSEs. Empty object for no fits.
 nlohmann::json fitReportJson(const std::vector<const DatasetFit*>& fits);
 
+// A solve's summary, the block both reports write under "solver": {"summary" (Ceres' brief
+// report and one line per start: cost, iterations, evaluations), "converged", "cost",
+// "residual_rms", "residuals", "starts", "start_costs" (each start's final cost, null where it
+// failed), "stopped_early", "best_start", "evaluations", "wall_time_s"}.
+nlohmann::json toJson(const FitResult& fit);
+
 // How predictions were made (stride, substeps, warm-up, dt, segments, filtered prediction).
 nlohmann::json toJson(const PredictSettings& p);
 

@@ -44,9 +44,7 @@ bool fitBaseline(Loop& L, const std::vector<IdentifyRun>& runs) {
     std::map<std::string, double> start = baselineStart(L.cx, L.fitIdx);
     if (L.cx.anyDynamics) start["m"] = runs[L.fitIdx[0]].nominalMass_kg;
     L.cur = fitSpec(L.cx, L.spec, start, L.fitIdx, L.opt.multistarts, L.res.fits, true);
-    L.res.baselineStartCosts = L.cur.fit.startCosts;
-    L.res.baselineBestStart = L.cur.fit.bestStart;
-    L.res.baselineSolver = L.cur.fit.solverSummary;
+    L.res.baselineFirstFit = L.cur.fit;
     if (!L.cur.ok) {
         L.res.cancelled = L.cancelled();
         L.res.message = "baseline fit failed: " + L.cur.message;

@@ -37,6 +37,7 @@
 #include "../params.hpp"
 #include "diagnostics.hpp"
 #include "extended_model.hpp"
+#include "fit.hpp"
 #include "preprocess.hpp"
 #include "self_test.hpp"
 
@@ -420,12 +421,10 @@ struct IdentifyResult {
     std::vector<ParamEstimate> baseline;  // baseline model parameters ± stderr
     std::string baselineNote;             // what the held-out restart found (heldOutRestart): refitted, or kept and why
     std::vector<BoundVerdict> baselineBounds;  // baseline parameters that ended on a bound, and the verdict
-    // The first baseline fit's multistart (IdentifyOptions::multistarts): each start's final cost
-    // (NaN: failed), the start kept, and the solver's summary with one line per start (its cost,
-    // iterations, evaluations). The starts show whether the baseline's minimum was found twice.
-    std::vector<double> baselineStartCosts;
-    int baselineBestStart = -1;
-    std::string baselineSolver;
+    // The first baseline fit's solve (its multistart, IdentifyOptions::multistarts: each start's
+    // final cost, the start kept, a summary line per start). Later refits may replace the
+    // baseline; this shows whether its first minimum was found by more than one start.
+    FitResult baselineFirstFit;
     std::vector<ParamEstimate> final;     // final model parameters ± stderr
     ModelErrors before, after;
     std::vector<AddedEffect> effectsAdded;

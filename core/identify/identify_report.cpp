@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "identify.hpp"
+#include "fit_report.hpp"
 
 #include "fit_internal.hpp"
 
@@ -92,9 +93,7 @@ nlohmann::json baselineJson(const IdentifyResult& r) {
                                 {"refitted_from_second_start", b.refitted},
                                 {"left_later_to", num(b.leftLaterTo)},
                                 {"verdict", b.verdict()}});
-    nlohmann::json costs = nlohmann::json::array();
-    for (double c : r.baselineStartCosts) costs.push_back(num(c));
-    j["starts"] = {{"costs", costs}, {"best", r.baselineBestStart}, {"solver_summary", r.baselineSolver}};
+    j["first_fit_solver"] = toJson(r.baselineFirstFit);
     return j;
 }
 

@@ -80,6 +80,18 @@ private slots:
         QCOMPARE(j.at("fit_nrmse").get<double>(), 0.1);
         QCOMPARE(j.at("validation_nrmse").get<double>(), 0.2);
         QCOMPARE(j.at("solver").at("residuals").get<size_t>(), size_t(300));
+        QVERIFY(j.at("solver") == toJson(f.fit));  // one solver block for every report
+        // Each start's final cost, a failed start's as null.
+        FitResult two = f.fit;
+        two.startsTried = 2;
+        two.startCosts = {1.5, NAN};
+        two.bestStart = 0;
+        const nlohmann::json s = toJson(two);
+        QCOMPARE(s.at("start_costs").size(), size_t(2));
+        QCOMPARE(s.at("start_costs").at(0).get<double>(), 1.5);
+        QVERIFY(s.at("start_costs").at(1).is_null());
+        QCOMPARE(s.at("best_start").get<int>(), 0);
+        QCOMPARE(s.at("starts").get<int>(), 2);
         // A Coulomb fit has no C1 to tie.
         QVERIFY(!toJson(fakeFit(LawKind::Coulomb, 0.3, 0.4)).at("parameters").contains("C1"));
     }

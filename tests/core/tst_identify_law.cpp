@@ -91,12 +91,13 @@ private slots:
         QVERIFY2(good.ok, good.message.c_str());
         // The report shows the first baseline fit's starts: each one's cost, the one kept (the
         // lowest) and a summary line per start with its evaluations.
-        const auto starts = toJson(good)["baseline"]["starts"];
-        QCOMPARE(starts["costs"].size(), size_t(2));
-        const int best = starts["best"].get<int>();
+        const auto solver = toJson(good)["baseline"]["first_fit_solver"];
+        QCOMPARE(solver["start_costs"].size(), size_t(2));
+        const int best = solver["best_start"].get<int>();
         QVERIFY(best == 0 || best == 1);
-        for (const auto& c : starts["costs"]) QVERIFY(c.is_null() || c.get<double>() >= starts["costs"][best].get<double>());
-        const std::string summary = starts["solver_summary"].get<std::string>();
+        for (const auto& c : solver["start_costs"])
+            QVERIFY(c.is_null() || c.get<double>() >= solver["start_costs"][best].get<double>());
+        const std::string summary = solver["summary"].get<std::string>();
         QVERIFY2(summary.find("start 0: cost") != std::string::npos && summary.find("start 1: ") != std::string::npos &&
                      summary.find(" evaluations\n") != std::string::npos,
                  summary.c_str());
