@@ -237,7 +237,8 @@ std::vector<double> derivative(const std::vector<double>& t, const std::vector<d
 
 ExtendedTrace simulateExtendedPrescribed(const ExtendedModel& m, const RunContext& ctx, const std::vector<double>& t,
                                          const std::vector<double>& g, const std::vector<double>* accel, int substeps,
-                                         const RunControl& ctl, const std::vector<double>* stepSlip) {
+                                         const RunControl& ctl, const std::vector<double>* stepSlip,
+                                         PrescribedObserver* observer) {
     ExtendedTrace tr;
     const size_t n = t.size();
     if (n < 2 || g.size() != n || (accel && accel->size() != n) || substeps < 1 ||
@@ -279,6 +280,7 @@ ExtendedTrace simulateExtendedPrescribed(const ExtendedModel& m, const RunContex
                     tr.message = "return mapping failed at t = " + std::to_string(t[i]) + " s";
                     return tr;
                 }
+                if (observer) observer->step(s, dgk, dt, r, cache);
                 s = r.state;
                 stuck = stuck && r.slipIncrement_m == 0.0;
             }
@@ -290,6 +292,7 @@ ExtendedTrace simulateExtendedPrescribed(const ExtendedModel& m, const RunContex
             }
         }
         tr.contactForce_N[i] = s.force_N;
+        if (observer) observer->sample(i);
         tr.measuredForce_N[i] = s.force_N + cp * tr.relVel_mps[i] + ms * a[i];
     }
     tr.accumulatedSlipEnd_m = s.aux[0];

@@ -116,10 +116,22 @@ struct ExtendedTrace {
 // `stepSlip_m`, when given ((n − 1)·substeps values), is the slip at the end of every law step
 // (step k of interval i at index (i − 1)·substeps + k − 1, the last of each interval equal to
 // slip_m[i]): the input between samples taken from a finer record instead of the line.
+// `observer`, when given, sees every law step and every recorded sample of the run (what the
+// forward sensitivities of prescribed_sensitivity.hpp are carried along).
+struct PrescribedObserver {
+    virtual ~PrescribedObserver() = default;
+    // One return map from `before` over a slip increment dg in dt; `cache` is the loop's, just
+    // after the step (it holds exp(α/r) of the new state when the step slipped).
+    virtual void step(const LawState& before, double dg_m, double dt_s, const ReturnMapResult& r,
+                      const ExtendedLaw::ExpCache& cache) = 0;
+    // The contact force of sample i is recorded (the state after the steps of interval i).
+    virtual void sample(size_t i) = 0;
+};
 ExtendedTrace simulateExtendedPrescribed(const ExtendedModel& m, const RunContext& ctx, const std::vector<double>& t_s,
                                          const std::vector<double>& slip_m, const std::vector<double>* accel_mps2,
                                          int substeps, const RunControl& ctl = {},
-                                         const std::vector<double>* stepSlip_m = nullptr);
+                                         const std::vector<double>* stepSlip_m = nullptr,
+                                         PrescribedObserver* observer = nullptr);
 
 // Spring–mass rig driven by `stage` from rest at t0 with step dt_s; records every
 // `outputEvery` steps (the start state included). The contact's t_N is ctx.normalForce_N.
