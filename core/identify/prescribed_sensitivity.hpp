@@ -21,9 +21,8 @@
 namespace stickslip::identify {
 
 // The parameters this covers: the law's keys (RateStateLaw::field: mu, eta, Dc, C1, r, vc,
-// epsT) and "<effect>.<param>" of normal_load_mu, direction_asymmetry, wear_drift,
-// presliding_compliance, viscous_damping and sensor_inertia. Effects with a state of their own
-// that is not carried yet (frictional_lag, stick_healing, backlash) are refused.
+// epsT) and "<effect>.<param>" of every catalogue effect switched on in the model; false with
+// the name of the first other one.
 bool sensitivitySupported(const ExtendedModel& m, const std::vector<std::string>& names, std::string* why = nullptr);
 
 struct PrescribedSensitivity {

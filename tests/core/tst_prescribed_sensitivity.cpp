@@ -21,7 +21,7 @@ struct Case {
 
 // A reversing stroke that sticks at each reversal and slides in between (amplitude 100 D_c),
 // sampled at 1 kHz with two law steps per sample, at a load other than t_N,ref.
-Case makeCase(StateStep step, const std::vector<std::string>& effects) {
+Case makeCase(StateStep step, const std::vector<std::string>& effects, double initialForce = std::nan("")) {
     Case c;
     ExtendedModel& m = c.model;
     m.law.mu = 0.25; m.law.C1 = 0.25; m.law.eta_s_per_m = 0.6; m.law.Dc_m = 20e-6; m.law.vc_mps = 0.1;
@@ -30,6 +30,7 @@ Case makeCase(StateStep step, const std::vector<std::string>& effects) {
     m.stateStep = step;
     c.ctx.normalForce_N = 8.0;
     c.ctx.accumulatedSlipStart_m = 1e-4;
+    c.ctx.initialForce_N = initialForce;
     c.names = {"mu", "eta", "Dc", "C1", "r", "vc", "epsT"};
     const std::map<std::string, std::pair<std::vector<double>, std::string>> known = {
         {"normal_load_mu", {{0.01}, "dmu_dtN_per_N"}},
@@ -38,11 +39,17 @@ Case makeCase(StateStep step, const std::vector<std::string>& effects) {
         {"presliding_compliance", {{2e5}, "kt_N_per_m"}},
         {"viscous_damping", {{0.02}, "zeta"}},
         {"sensor_inertia", {{0.05}, "mass_kg"}},
+        {"frictional_lag", {{4e-3}, "tau_s"}},
+        {"stick_healing", {{0.02, 0.01, 3e-5}, ""}},
+        {"backlash", {{5e-5}, "halfWidth_m"}},
     };
     for (const std::string& e : effects) {
         const auto& [v, p] = known.at(e);
         setEffect(m.effects, e, v);
-        c.names.push_back(e + "." + p);
+        if (e == "stick_healing")
+            for (const char* k : {"b_heal", "tc_s", "Dh_m"}) c.names.push_back(e + "." + k);
+        else
+            c.names.push_back(e + "." + p);
     }
     for (int i = 0; i <= 1000; ++i) {
         const double tt = 1e-3 * i;
@@ -61,12 +68,51 @@ double* valueOf(ExtendedModel& m, const std::string& name) {
     if (name == "presliding_compliance.kt_N_per_m") return &fx.preslidingCompliance->kt_N_per_m;
     if (name == "viscous_damping.zeta") return &fx.viscousDamping->zeta;
     if (name == "sensor_inertia.mass_kg") return &fx.sensorInertia->mass_kg;
+    if (name == "frictional_lag.tau_s") return &fx.frictionalLag->tau_s;
+    if (name == "stick_healing.b_heal") return &fx.stickHealing->b_heal;
+    if (name == "stick_healing.tc_s") return &fx.stickHealing->tc_s;
+    if (name == "stick_healing.Dh_m") return &fx.stickHealing->Dh_m;
+    if (name == "backlash.halfWidth_m") return &fx.backlash->halfWidth_m;
     return nullptr;
 }
 
 std::vector<double> measured(const Case& c, const ExtendedModel& m) {
     const ExtendedTrace tr = simulateExtendedPrescribed(m, c.ctx, c.t, c.g, nullptr, 2);
     return tr.ok() ? tr.measuredForce_N : std::vector<double>{};
+}
+
+// Every column of c's sensitivities against a central difference of the plain run.
+void checkColumns(const Case& c) {
+    const PrescribedSensitivity s = simulatePrescribedSensitivity(c.model, c.ctx, c.t, c.g, nullptr, 2, c.names);
+    QVERIFY2(s.ok(), s.message.c_str());
+    // The run itself is the plain run's, to the bit.
+    const std::vector<double> f0 = measured(c, c.model);
+    QCOMPARE(s.measuredForce_N.size(), f0.size());
+    for (size_t i = 0; i < f0.size(); ++i) QCOMPARE(s.measuredForce_N[i], f0[i]);
+    // The run must stick and slide: otherwise half of the map is not exercised.
+    const ExtendedTrace tr = simulateExtendedPrescribed(c.model, c.ctx, c.t, c.g, nullptr, 2);
+    const long stuck = std::count(tr.stuck.begin(), tr.stuck.end(), 1);
+    QVERIFY2(stuck >= 10 && stuck <= 990, std::to_string(stuck).c_str());
+    for (size_t j = 0; j < c.names.size(); ++j) {
+        ExtendedModel up = c.model, dn = c.model;
+        const double v = *valueOf(up, c.names[j]);
+        const double h = 1e-6 * std::max(std::abs(v), 1e-3);
+        *valueOf(up, c.names[j]) = v + h;
+        *valueOf(dn, c.names[j]) = v - h;
+        const std::vector<double> fu = measured(c, up), fd = measured(c, dn);
+        QVERIFY(!fu.empty() && !fd.empty());
+        double num = 0, den = 0;
+        for (size_t i = 0; i < f0.size(); ++i) {
+            const double d = (fu[i] - fd[i]) / (2 * h);
+            const double e = s.dMeasured(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) - d;
+            num += e * e;
+            den += d * d;
+        }
+        const double rel = std::sqrt(num / std::max(den, 1e-300));
+        qInfo("%s: |J - J_fd| / |J_fd| = %.2e (|J_fd| = %.3e)", c.names[j].c_str(), rel, std::sqrt(den));
+        QVERIFY2(den > 0, c.names[j].c_str());
+        QVERIFY2(rel < 1e-5, c.names[j].c_str());  // seen: at most 4.3e-7 (D_c, constant-rate step)
+    }
 }
 
 }  // namespace
@@ -85,6 +131,10 @@ private slots:
             {"presliding_compliance", {"presliding_compliance"}},
             {"viscous_damping", {"viscous_damping"}},
             {"sensor_inertia", {"sensor_inertia"}},
+            {"frictional_lag", {"frictional_lag"}},
+            {"stick_healing", {"stick_healing"}},
+            {"backlash", {"backlash"}},
+            {"lag, healing and backlash", {"frictional_lag", "stick_healing", "backlash"}},
             {"all six", {"normal_load_mu", "direction_asymmetry", "wear_drift", "presliding_compliance",
                          "viscous_damping", "sensor_inertia"}},
         };
@@ -98,56 +148,28 @@ private slots:
         QFETCH(QStringList, effects);
         std::vector<std::string> fx;
         for (const QString& e : effects) fx.push_back(e.toStdString());
-        const Case c = makeCase(step ? StateStep::ConstantRate : StateStep::BackwardEuler, fx);
-        const PrescribedSensitivity s = simulatePrescribedSensitivity(c.model, c.ctx, c.t, c.g, nullptr, 2, c.names);
-        QVERIFY2(s.ok(), s.message.c_str());
-        // The run itself is the plain run's, to the bit.
-        const std::vector<double> f0 = measured(c, c.model);
-        QCOMPARE(s.measuredForce_N.size(), f0.size());
-        for (size_t i = 0; i < f0.size(); ++i) QCOMPARE(s.measuredForce_N[i], f0[i]);
-        // The run must stick and slide: otherwise half of the map is not exercised.
-        const ExtendedTrace tr = simulateExtendedPrescribed(c.model, c.ctx, c.t, c.g, nullptr, 2);
-        const long stuck = std::count(tr.stuck.begin(), tr.stuck.end(), 1);
-        QVERIFY2(stuck >= 10 && stuck <= 990, std::to_string(stuck).c_str());
-        for (size_t j = 0; j < c.names.size(); ++j) {
-            ExtendedModel up = c.model, dn = c.model;
-            const double v = *valueOf(up, c.names[j]);
-            const double h = 1e-6 * std::max(std::abs(v), 1e-3);
-            *valueOf(up, c.names[j]) = v + h;
-            *valueOf(dn, c.names[j]) = v - h;
-            const std::vector<double> fu = measured(c, up), fd = measured(c, dn);
-            QVERIFY(!fu.empty() && !fd.empty());
-            double num = 0, den = 0;
-            for (size_t i = 0; i < f0.size(); ++i) {
-                const double d = (fu[i] - fd[i]) / (2 * h);
-                const double e = s.dMeasured(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) - d;
-                num += e * e;
-                den += d * d;
-            }
-            const double rel = std::sqrt(num / std::max(den, 1e-300));
-            qInfo("%s: |J - J_fd| / |J_fd| = %.2e (|J_fd| = %.3e)", c.names[j].c_str(), rel, std::sqrt(den));
-            QVERIFY2(den > 0, c.names[j].c_str());
-            QVERIFY2(rel < 1e-5, c.names[j].c_str());  // seen: at most 4.3e-7 (D_c, constant-rate step)
-        }
+        checkColumns(makeCase(step ? StateStep::ConstantRate : StateStep::BackwardEuler, fx));
     }
-    void refusesWhatItDoesNotCarry() {
-        Case c = makeCase(StateStep::BackwardEuler, {});
+    // A run cut out of a recording starts loaded (RunContext::initialForce_N), here at a negative
+    // force: Y_act and the play coordinate start at values that depend on the parameters.
+    void loadedStartWithEveryEffect() {
+        checkColumns(makeCase(StateStep::ConstantRate,
+                              {"normal_load_mu", "direction_asymmetry", "wear_drift", "presliding_compliance", "viscous_damping",
+                               "sensor_inertia", "frictional_lag", "stick_healing", "backlash"},
+                              -1.0));
+    }
+    void refusesParametersTheModelDoesNotHave() {
+        const Case c = makeCase(StateStep::BackwardEuler, {"frictional_lag"});
         std::string why;
         QVERIFY(sensitivitySupported(c.model, c.names, &why));
-        std::vector<std::string> withUnknown = c.names;
-        withUnknown.push_back("wear_drift.dmu_ds_per_m");  // the effect is off
-        QVERIFY(!sensitivitySupported(c.model, withUnknown, &why));
-        QVERIFY(why.find("wear_drift.dmu_ds_per_m") != std::string::npos);
-        for (const char* e : {"frictional_lag", "stick_healing", "backlash"}) {
-            ExtendedModel m = c.model;
-            EffectInfo info;
-            QVERIFY(findEffect(e, info));
-            std::vector<double> v;
-            for (const EffectParam& p : info.params) v.push_back(p.initial);
-            QVERIFY(setEffect(m.effects, e, v));
-            const PrescribedSensitivity s = simulatePrescribedSensitivity(m, c.ctx, c.t, c.g, nullptr, 2, c.names);
+        for (const char* k : {"wear_drift.dmu_ds_per_m", "backlash.halfWidth_m", "m", "zeta"}) {
+            std::vector<std::string> names = c.names;
+            names.push_back(k);  // an effect that is off, or a rig parameter the law run does not see
+            QVERIFY(!sensitivitySupported(c.model, names, &why));
+            QVERIFY2(why.find(k) != std::string::npos, why.c_str());
+            const PrescribedSensitivity s = simulatePrescribedSensitivity(c.model, c.ctx, c.t, c.g, nullptr, 2, names);
             QVERIFY(!s.ok());
-            QVERIFY2(s.message.find(e) != std::string::npos, s.message.c_str());
+            QCOMPARE(s.message, why);
         }
     }
 };
