@@ -171,6 +171,9 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     twoWayFlag("--forward-jacobian", "--central-jacobian", o->req.options.forwardJacobian,
                "the solver's Jacobian by forward differences (default: p residual runs per Jacobian) or by central "
                "differences (2p, slower); standard errors and leave-one-run-out refits use central differences either way");
+    cmd->add_flag("--sensitivity-jacobian", o->req.options.analyticJacobian,
+                  "the solver's Jacobian while it iterates from forward sensitivities carried through the return map "
+                  "(one law run per run instead of one per parameter; not the segment residual); not yet the default");
     twoWayFlag("--curve-coordinates", "--law-coordinates", o->req.options.curveCoordinates,
                "fits warm-started from a fitted model move in the steady-state curve's coordinates C1/vc^2 and "
                "eta - C1/vc (default, both set-ups, as fit --setup dynamics does) or in C1, eta themselves");

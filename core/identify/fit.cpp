@@ -44,10 +44,10 @@ using detail::PointEvaluator;
 // step), not the standard errors, which are differenced centrally at the optimum.
 class DifferenceCost : public ceres::CostFunction {
 public:
-    DifferenceCost(PointEvaluator& ev, size_t p, size_t m, double relativeStep, JacobianKind kind)
-        : ev_(ev), p_(p), m_(m), relStep_(relativeStep), kind_(kind) {
+    DifferenceCost(PointEvaluator& ev, const Mapping& map, size_t m, double relativeStep, JacobianKind kind)
+        : ev_(ev), map_(map), p_(map.freeIdx.size()), m_(m), relStep_(relativeStep), kind_(kind) {
         set_num_residuals(static_cast<int>(m));
-        mutable_parameter_block_sizes()->push_back(static_cast<int32_t>(p));
+        mutable_parameter_block_sizes()->push_back(static_cast<int32_t>(p_));
     }
     bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
         const std::vector<double> z(parameters[0], parameters[0] + p_);
@@ -55,6 +55,7 @@ public:
         if (!base->ok) return false;
         std::copy(base->r.begin(), base->r.end(), residuals);
         if (jacobians == nullptr || jacobians[0] == nullptr) return true;
+        if (analytic(z, jacobians[0])) return true;
         const double minStep = std::sqrt(std::numeric_limits<double>::epsilon());
         const bool central = kind_ == JacobianKind::Central;
         std::vector<double> delta(p_);
@@ -106,7 +107,23 @@ public:
     }
 
 private:
+    // The problem's own Jacobian, in the solver's coordinates (chain rule through the mapping).
+    bool analytic(const std::vector<double>& z, double* J) const {
+        const FitProblem& prob = *map_.prob;
+        if (!prob.analyticJacobian) return false;
+        const size_t P = prob.parameters.size();
+        std::vector<double> full(m_ * P, 0.0);
+        if (!prob.analyticJacobian(map_.allValues(z.data()), full)) return false;
+        for (size_t k = 0; k < p_; ++k) {
+            const double f = map_.dvdz(k, z[k]);
+            const size_t c = map_.freeIdx[k];
+            for (size_t i = 0; i < m_; ++i) J[i * p_ + k] = full[i * P + c] * f;
+        }
+        return true;
+    }
+
     PointEvaluator& ev_;
+    const Mapping& map_;
     size_t p_, m_;
     double relStep_;
     JacobianKind kind_;
@@ -211,7 +228,7 @@ ceres::Solver::Summary solveOnce(const FitProblem& prob, const Mapping& map, Poi
     const size_t p = map.freeIdx.size();
     ceres::Problem::Options po;
     ceres::Problem problem(po);
-    auto* cost = new DifferenceCost(evaluator, p, prob.residualCount, prob.relativeStep, prob.jacobian);
+    auto* cost = new DifferenceCost(evaluator, map, prob.residualCount, prob.relativeStep, prob.jacobian);
     problem.AddResidualBlock(cost, makeLoss(prob).release(), z.data());  // the problem owns the loss
     if (!held.empty()) problem.SetManifold(z.data(), new ceres::SubsetManifold(static_cast<int>(p), held));
     for (size_t k = 0; k < p; ++k) {

@@ -63,6 +63,11 @@ using ResidualFunction = std::function<bool(const std::vector<double>& params, s
 // is scheduled.
 using BatchResidualFunction = std::function<void(const std::vector<std::vector<double>>& params,
                                                  std::vector<std::vector<double>>& residuals, std::vector<char>& ok)>;
+// Optional: the Jacobian of the residuals at one point, ∂r_i/∂θ_j (row-major, residualCount ×
+// parameters.size(), columns of fixed parameters unused), in physical units, from the same
+// model run as `residuals` (e.g. forward sensitivities). Return false where it cannot be
+// formed: that point's Jacobian is then differenced as without it.
+using JacobianFunction = std::function<bool(const std::vector<double>& params, std::vector<double>& jacobian)>;
 
 // A grid search on one free parameter before the local solver (first start only): the cost is
 // evaluated at the start with `name` set to each of `values` (others unchanged, all points in
@@ -79,6 +84,9 @@ struct FitProblem {
     std::vector<ParameterScan> scans;  // applied in order, each from the best point of the last
     ResidualFunction residuals;
     BatchResidualFunction batchResiduals;  // optional (else `residuals` is called point by point)
+    // Optional: the solver's Jacobian while it iterates, instead of `jacobian`'s differences.
+    // The standard errors at the optimum are still differenced centrally.
+    JacobianFunction analyticJacobian;
     size_t residualCount = 0;
     // Nuisance parameters the residual callback estimates itself for every point (variable
     // projection, e.g. the shooting segments' initial states): they use up residual degrees of

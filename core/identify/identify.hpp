@@ -231,6 +231,11 @@ struct IdentifyOptions {
     // one `fit` uses. Either way the standard errors are differenced centrally at the optimum
     // and the leave-one-run-out refits (held-out errors, jackknife) iterate with central ones.
     bool forwardJacobian = true;
+    // The solver's Jacobian while it iterates from forward sensitivities carried through the
+    // return map (prescribed_sensitivity.hpp; one law run per run instead of p or 2p), for every
+    // fit but the segment residual's. Off by default until it is judged on every set: exact
+    // derivatives move each fit's path (docs/identify-results.md, session 60).
+    bool analyticJacobian = false;
     // Both set-ups: every fit that starts from a fitted model (leave-one-run-out refits,
     // candidates, restarts) with C1 and η inside their bounds (and κ, s inside theirs) moves in
     // the steady-state curve's coordinates κ = C1/v_c², s = η − C1/v_c instead of C1, η
@@ -439,7 +444,9 @@ struct IdentifyResult {
     std::vector<IdentifyStage> timeline;  // consecutive stages, from the baseline to the report
     int decimation = 1;       // samples used: every decimation-th
     int edgeGuard = 0;        // dynamics law channel: samples kept from a stuck one (IdentifyOptions::maskEdgeGuard; largest over the runs)
-    std::string jacobian = "forward";  // the solvers' Jacobian while iterating (IdentifyOptions::forwardJacobian)
+    // The solvers' Jacobian while iterating: "forward", "central" (IdentifyOptions::forwardJacobian)
+    // or "sensitivities" (IdentifyOptions::analyticJacobian).
+    std::string jacobian = "forward";
     // The warm-started fits' coordinates for C1, η: "steady_state_curve" (IdentifyOptions::
     // curveCoordinates, from a start inside their bounds) or "law".
     std::string coordinates = "law";

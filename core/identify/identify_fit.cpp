@@ -183,6 +183,63 @@ static BatchResidualFunction batchResiduals(const Context& cx, const Spec& spec,
     };
 }
 
+// The solver's Jacobian from forward sensitivities (analyticResidualJacobian), in the problem's
+// parameters: in the steady-state curve's coordinates the law's C1 and η are functions of κ, s
+// and v_c (curve_coordinates.hpp), whose derivatives are differenced here (no model run).
+static JacobianFunction analyticJacobian(const Context& cx, const Spec& spec, const std::vector<size_t>& idx,
+                                         const std::vector<FitParameter>& params, const CurveCoordinates& curve) {
+    std::vector<std::string> names;
+    std::vector<char> free;
+    for (const FitParameter& p : params) names.push_back(p.name), free.push_back(p.free ? 1 : 0);
+    return [&cx, &spec, &idx, names, free, curve](const std::vector<double>& pv, std::vector<double>& jac) {
+        auto lawAt = [&](const std::vector<double>& v) {
+            std::map<std::string, double> vals;
+            for (size_t i = 0; i < names.size(); ++i) vals[names[i]] = v[i];
+            if (curve.active()) curve.toLaw(v, vals);
+            return vals;
+        };
+        const std::map<std::string, double> vals = lawAt(pv);
+        if (curve.active() && !curve.withinLawBounds(vals)) return false;
+        // T(k, j) = ∂ law value k / ∂ problem parameter j, over the free parameters.
+        std::vector<std::string> lawNames;
+        std::map<std::string, std::vector<double>> T;
+        for (size_t j = 0; j < names.size(); ++j) {
+            if (!free[j]) continue;
+            if (!curve.active()) {
+                T[names[j]].assign(names.size(), 0.0);
+                continue;
+            }
+            std::vector<double> up = pv, dn = pv;
+            const double h = 1e-6 * std::max(std::abs(pv[j]), 1e-12);
+            up[j] += h;
+            dn[j] -= h;
+            const std::map<std::string, double> a = lawAt(up), b = lawAt(dn);
+            for (const auto& [k, v] : a) {
+                if (CurveCoordinates::isCoordinate(k)) continue;
+                const double d = (v - b.at(k)) / (2 * h);
+                if (d != 0.0) T[k].resize(names.size(), 0.0), T[k][j] = d;
+            }
+        }
+        if (!curve.active())
+            for (size_t j = 0; j < names.size(); ++j)
+                if (free[j]) T[names[j]][j] = 1.0;
+        for (const auto& [k, row] : T) lawNames.push_back(k);
+        std::vector<double> r;
+        Eigen::MatrixXd J;
+        if (!analyticResidualJacobian(cx, spec, vals, idx, lawNames, r, J)) return false;
+        const size_t P = names.size(), m = static_cast<size_t>(J.rows());
+        jac.assign(m * P, 0.0);
+        for (size_t c = 0; c < lawNames.size(); ++c) {
+            const std::vector<double>& row = T.at(lawNames[c]);
+            for (size_t j = 0; j < P; ++j) {
+                if (row[j] == 0.0) continue;
+                for (size_t i = 0; i < m; ++i) jac[i * P + j] += J(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) * row[j];
+            }
+        }
+        return true;
+    };
+}
+
 // The outcome of a finished fit: its values and estimates in the law's coordinates and, for
 // FitOutput::Full, its residual sum of squares over the fitted runs.
 static FitOutcome outcomeOf(const Context& cx, const Spec& spec, const std::vector<size_t>& idx, FitResult fit,
@@ -265,6 +322,7 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
         return residualsOver(cx, spec, idx, m, mass, r, ss, n);
     };
     prob.batchResiduals = batchResiduals(cx, spec, idx, names, lawValues);
+    if (cx.opt->analyticJacobian && !spec.segments) prob.analyticJacobian = analyticJacobian(cx, spec, idx, prob.parameters, curve);
     ++fits;
     FitResult fit = fitLeastSquares(prob);
     FitOutcome out;

@@ -168,6 +168,22 @@ struct LawRun {
 // law_resolution.cpp).
 bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m, LawRun& out, int refinement = 1);
 bool lawParameter(const std::string& name);
+// The model the law channel runs: in the dynamics set-up viscous damping is a rig effect (in the
+// equation of motion), not a dashpot beside the sensor.
+ExtendedModel lawChannelModel(const Prepared& p, const ExtendedModel& m);
+// simulateLawRun (refinement 1) carrying the forward sensitivities of the law channel's measured
+// force with respect to `names` (prescribed_sensitivity.hpp); false when the run fails or a name
+// is not a parameter of the law channel's model.
+bool simulateLawRunSensitivity(const Context& cx, const Prepared& p, const ExtendedModel& m,
+                               const std::vector<std::string>& names, LawRun& out, Eigen::MatrixXd& dMeasured);
+// The Jacobian of residualVector over the runs idx at vals with respect to `names` (keys of
+// vals), rows in residualVector's order: the law channel from forward sensitivities (filtered as
+// its residual is), the equation-of-motion channel in closed form. Also the residuals
+// themselves, from the same runs. False for the segment residual or a name neither channel
+// covers (the caller then differences).
+bool analyticResidualJacobian(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
+                              const std::vector<size_t>& idx, const std::vector<std::string>& names, std::vector<double>& r,
+                              Eigen::MatrixXd& J);
 // Residuals of one run appended to `r` (see identify_residuals.cpp); with `law`, the law run
 // computed by simulateLawRun for a model with the same law parameters is used instead of a new
 // simulation (identical numbers).

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "../integrate/dynamics.hpp"
+#include "prescribed_sensitivity.hpp"
 #include "identify_internal.hpp"
 
 namespace stickslip::identify::detail {
@@ -121,17 +122,11 @@ bool lawParameter(const std::string& name) {
              name.rfind("sensor_inertia.", 0) == 0);
 }
 
-namespace {
-
-// The model the law channel runs: in the dynamics set-up viscous damping is a rig effect (in the
-// equation of motion), not a dashpot beside the sensor.
 ExtendedModel lawChannelModel(const Prepared& p, const ExtendedModel& m) {
     ExtendedModel lawOnly = m;
     if (p.run->setup == SetupKind::Dynamics) lawOnly.effects.viscousDamping.reset();
     return lawOnly;
 }
-
-}  // namespace
 
 namespace {
 
@@ -153,13 +148,35 @@ std::vector<double> refinedStepSlip(const Prepared& p, int substeps, int refinem
 
 }  // namespace
 
-bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m, LawRun& out, int refinement) {
-    refinement = std::max(1, refinement);
+namespace {
+
+RunContext lawRunContext(const Prepared& p) {
     RunContext ctx{p.run->normalForce_N, p.run->slipBefore_m};
     // A run cut out of a longer recording (IdentifyRun::cutFromRecording) is loaded at its first
     // sample: the law starts from the measured force there, not from rest, which would
     // mispredict the first half-stroke by up to 2 μ t_N.
     if (p.run->cutFromRecording && !p.F.empty()) ctx.initialForce_N = p.F.front();
+    return ctx;
+}
+
+}  // namespace
+
+bool simulateLawRunSensitivity(const Context& cx, const Prepared& p, const ExtendedModel& m,
+                               const std::vector<std::string>& names, LawRun& out, Eigen::MatrixXd& dMeasured) {
+    PrescribedSensitivity s = simulatePrescribedSensitivity(lawChannelModel(p, m), lawRunContext(p), p.t, p.g,
+                                                            p.a.empty() ? nullptr : &p.a, cx.opt->substeps, names, {},
+                                                            p.stepSlip.empty() ? nullptr : &p.stepSlip);
+    if (!s.ok()) return false;
+    out.contactForce_N = std::move(s.trace.contactForce_N);
+    out.relVel_mps = std::move(s.trace.relVel_mps);
+    out.accel_mps2 = std::move(s.trace.sliderAccel_mps2);
+    dMeasured = std::move(s.dMeasured);
+    return true;
+}
+
+bool simulateLawRun(const Context& cx, const Prepared& p, const ExtendedModel& m, LawRun& out, int refinement) {
+    refinement = std::max(1, refinement);
+    const RunContext ctx = lawRunContext(p);
     const int sub = cx.opt->substeps;
     const std::vector<double> fine = refinedStepSlip(p, sub, refinement);
     const std::vector<double>* steps = refinement > 1 ? (fine.empty() ? nullptr : &fine)

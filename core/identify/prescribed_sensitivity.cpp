@@ -255,7 +255,8 @@ PrescribedSensitivity simulatePrescribedSensitivity(const ExtendedModel& m, cons
         return out;
     }
     Carrier carrier(m, ctx, sd, t.size());
-    ExtendedTrace tr = simulateExtendedPrescribed(m, ctx, t, g, accel, substeps, ctl, stepSlip, &carrier);
+    out.trace = simulateExtendedPrescribed(m, ctx, t, g, accel, substeps, ctl, stepSlip, &carrier);
+    const ExtendedTrace& tr = out.trace;
     out.status = tr.status;
     out.message = tr.message;
     if (!tr.ok()) return out;
@@ -265,7 +266,6 @@ PrescribedSensitivity simulatePrescribedSensitivity(const ExtendedModel& m, cons
         for (size_t i = 0; i < t.size(); ++i)
             out.dMeasured(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) +=
                 sd.zeta[j] * ctx.normalForce_N * tr.relVel_mps[i] + sd.ms[j] * tr.sliderAccel_mps2[i];
-    out.measuredForce_N = std::move(tr.measuredForce_N);
     return out;
 }
 

@@ -28,8 +28,8 @@ bool sensitivitySupported(const ExtendedModel& m, const std::vector<std::string>
 struct PrescribedSensitivity {
     RunStatus status = RunStatus::Ok;
     std::string message;
-    std::vector<double> measuredForce_N;  // as simulateExtendedPrescribed's measuredForce_N
-    Eigen::MatrixXd dMeasured;            // n × p: ∂(measured force)_i / ∂θ_j, θ in `names` order
+    ExtendedTrace trace;        // the run, as simulateExtendedPrescribed returns it
+    Eigen::MatrixXd dMeasured;  // n × p: ∂(measured force)_i / ∂θ_j, θ in `names` order
     bool ok() const { return status == RunStatus::Ok; }
 };
 

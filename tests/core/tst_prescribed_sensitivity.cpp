@@ -87,8 +87,8 @@ void checkColumns(const Case& c) {
     QVERIFY2(s.ok(), s.message.c_str());
     // The run itself is the plain run's, to the bit.
     const std::vector<double> f0 = measured(c, c.model);
-    QCOMPARE(s.measuredForce_N.size(), f0.size());
-    for (size_t i = 0; i < f0.size(); ++i) QCOMPARE(s.measuredForce_N[i], f0[i]);
+    QCOMPARE(s.trace.measuredForce_N.size(), f0.size());
+    for (size_t i = 0; i < f0.size(); ++i) QCOMPARE(s.trace.measuredForce_N[i], f0[i]);
     // The run must stick and slide: otherwise half of the map is not exercised.
     const ExtendedTrace tr = simulateExtendedPrescribed(c.model, c.ctx, c.t, c.g, nullptr, 2);
     const long stuck = std::count(tr.stuck.begin(), tr.stuck.end(), 1);
