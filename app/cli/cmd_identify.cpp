@@ -171,6 +171,9 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     twoWayFlag("--forward-jacobian", "--central-jacobian", o->req.options.forwardJacobian,
                "the solver's Jacobian by forward differences (default: p residual runs per Jacobian) or by central "
                "differences (2p, slower); standard errors and leave-one-run-out refits use central differences either way");
+    cmd->add_option("--line-search-steps", o->req.options.lineSearchSteps,
+                    "the fits' projected line search: at most this many step contractions per trust-region step "
+                    "(Ceres' default 20; a rejected step spends them all)")->capture_default_str();
     cmd->add_flag("--sensitivity-jacobian", o->req.options.analyticJacobian,
                   "the solver's Jacobian while it iterates from forward sensitivities carried through the return map "
                   "(one law run per run instead of one per parameter; not the segment residual); not yet the default");

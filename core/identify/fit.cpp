@@ -21,6 +21,21 @@ namespace stickslip::identify {
 
 namespace detail {
 
+bool analyticJacobianAt(const Mapping& map, const std::vector<double>& z, std::vector<double>& J) {
+    const FitProblem& prob = *map.prob;
+    if (!prob.analyticJacobian) return false;
+    const size_t P = prob.parameters.size(), p = map.freeIdx.size(), m = prob.residualCount;
+    std::vector<double> full(m * P, 0.0);
+    if (!prob.analyticJacobian(map.allValues(z.data()), full) || full.size() != m * P) return false;
+    J.assign(m * p, 0.0);
+    for (size_t k = 0; k < p; ++k) {
+        const double f = map.dvdz(k, z[k]);
+        const size_t c = map.freeIdx[k];
+        for (size_t i = 0; i < m; ++i) J[i * p + k] = full[i * P + c] * f;
+    }
+    return true;
+}
+
 std::string fmt(double v, const char* f) {
     char b[64];
     std::snprintf(b, sizeof b, f, v);
@@ -109,16 +124,10 @@ public:
 private:
     // The problem's own Jacobian, in the solver's coordinates (chain rule through the mapping).
     bool analytic(const std::vector<double>& z, double* J) const {
-        const FitProblem& prob = *map_.prob;
-        if (!prob.analyticJacobian) return false;
-        const size_t P = prob.parameters.size();
-        std::vector<double> full(m_ * P, 0.0);
-        if (!prob.analyticJacobian(map_.allValues(z.data()), full)) return false;
-        for (size_t k = 0; k < p_; ++k) {
-            const double f = map_.dvdz(k, z[k]);
-            const size_t c = map_.freeIdx[k];
-            for (size_t i = 0; i < m_; ++i) J[i * p_ + k] = full[i * P + c] * f;
-        }
+        if (!map_.prob->analyticJacobian) return false;
+        std::vector<double> full;
+        if (!detail::analyticJacobianAt(map_, z, full)) return false;
+        std::copy(full.begin(), full.end(), J);
         return true;
     }
 
@@ -238,6 +247,7 @@ ceres::Solver::Summary solveOnce(const FitProblem& prob, const Mapping& map, Poi
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_QR;
     so.max_num_iterations = prob.maxIterations;
+    so.max_num_line_search_step_size_iterations = prob.maxLineSearchSteps;
     so.function_tolerance = prob.functionTolerance;
     so.parameter_tolerance = prob.parameterTolerance;
     so.gradient_tolerance = 1e-12;
@@ -348,6 +358,7 @@ ParamIssues FitProblem::validate() const {
     if (!(sameCostTolerance >= 0.0)) note("sameCostTolerance = " + fmt(sameCostTolerance) + " is out of range: must be >= 0");
     if (multistarts < 1) note("multistarts = " + std::to_string(multistarts) + " is out of range: must be >= 1");
     if (maxIterations < 1) note("maxIterations must be >= 1");
+    if (maxLineSearchSteps < 1) note("maxLineSearchSteps must be >= 1");
     if (!(relativeStep > 0.0 && relativeStep < 0.1)) note("relativeStep = " + fmt(relativeStep) + " must be in (0, 0.1)");
     return issues;
 }

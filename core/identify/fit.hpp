@@ -98,6 +98,11 @@ struct FitProblem {
     double lossScale = 1.0;            // residual size at which the robust loss bends
     uint64_t seed = 20260101;          // deterministic random starts
     int maxIterations = 60;            // per start
+    // Contractions of the projected line search Ceres runs after each trust-region step of a
+    // bounded problem (Solver::Options::max_num_line_search_step_size_iterations, default 20).
+    // A step the trust region then rejects spends them all: on the synthetic sets most of a
+    // warm-started fit's residual evaluations (docs/identify-results.md, session 60).
+    int maxLineSearchSteps = 20;
     double functionTolerance = 1e-9;   // relative cost change to stop
     double parameterTolerance = 1e-9;  // relative step (internal scale) to stop
     double relativeStep = 1e-4;        // difference step, relative to the internal parameter

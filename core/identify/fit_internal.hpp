@@ -54,6 +54,11 @@ struct Mapping {
     }
 };
 
+// The problem's own Jacobian (FitProblem::analyticJacobian) at internal point z, in internal
+// coordinates (the chain rule through the mapping), row-major residualCount × free parameters;
+// false when the problem has none or it cannot be formed there.
+bool analyticJacobianAt(const Mapping& map, const std::vector<double>& z, std::vector<double>& J);
+
 // Residual vectors at internal points z, with a small memory of the most recent points.
 // Ceres asks for the same point several times: with bounds, every trust-region step runs an
 // Armijo line search whose (cubic) interpolation evaluates the Jacobian at the trial point;

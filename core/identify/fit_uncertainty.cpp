@@ -16,13 +16,20 @@ namespace detail {
 
 namespace {
 
-// The plain Jacobian at the optimum in internal coordinates, by central differences (one-sided
+// The plain Jacobian at the optimum in internal coordinates: the problem's own
+// (FitProblem::analyticJacobian) when it has one, else by central differences (one-sided
 // against a bound): the 2p displaced points are computed together (in parallel when the
 // problem can). False (status set) when a parameter cannot be displaced at all.
 bool jacobianAtOptimum(const FitProblem& prob, const Mapping& map, PointEvaluator& evaluator, const std::vector<double>& bestZ,
                        const PointEvaluator::Result& base, FitResult& res, Eigen::MatrixXd& J) {
     const size_t p = map.freeIdx.size();
     const size_t m = prob.residualCount;
+    std::vector<double> exact;
+    if (analyticJacobianAt(map, bestZ, exact)) {  // the problem's own Jacobian, when it has one
+        J = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+            exact.data(), static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(p));
+        return true;
+    }
     std::vector<std::vector<double>> displaced;
     std::vector<double> hPlus(p), hMinus(p);
     for (size_t k = 0; k < p; ++k) {

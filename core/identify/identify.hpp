@@ -236,6 +236,10 @@ struct IdentifyOptions {
     // fit but the segment residual's. Off by default until it is judged on every set: exact
     // derivatives move each fit's path (docs/identify-results.md, session 60).
     bool analyticJacobian = false;
+    // The fits' projected line search: at most this many contractions per trust-region step
+    // (FitProblem::maxLineSearchSteps). 20 (Ceres' default) until a smaller cap is judged on
+    // every set.
+    int lineSearchSteps = 20;
     // Both set-ups: every fit that starts from a fitted model (leave-one-run-out refits,
     // candidates, restarts) with C1 and η inside their bounds (and κ, s inside theirs) moves in
     // the steady-state curve's coordinates κ = C1/v_c², s = η − C1/v_c instead of C1, η
@@ -447,6 +451,7 @@ struct IdentifyResult {
     // The solvers' Jacobian while iterating: "forward", "central" (IdentifyOptions::forwardJacobian)
     // or "sensitivities" (IdentifyOptions::analyticJacobian).
     std::string jacobian = "forward";
+    int lineSearchSteps = 20;  // the fits' line-search cap (IdentifyOptions::lineSearchSteps)
     // The warm-started fits' coordinates for C1, η: "steady_state_curve" (IdentifyOptions::
     // curveCoordinates, from a start inside their bounds) or "law".
     std::string coordinates = "law";

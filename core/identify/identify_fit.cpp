@@ -295,6 +295,7 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
     prob.maxIterations = scanStiffness ? 40 : 20;
     prob.functionTolerance = 1e-6;
     prob.parameterTolerance = 1e-6;
+    prob.maxLineSearchSteps = cx.opt->lineSearchSteps;
     prob.jacobian = cx.opt->forwardJacobian && from == FitStart::Far ? JacobianKind::Forward : JacobianKind::Central;
     prob.uncertainty = output == FitOutput::Full;
     const auto names = [&] {

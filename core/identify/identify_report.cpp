@@ -185,7 +185,7 @@ nlohmann::json selectionJson(const IdentifyResult& r) {
                       {"held_out_alpha", num(r.heldOutAlpha)}, {"min_held_out_gain", num(r.minHeldOutGain)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
                       {"tau_int_samples", num(r.tauInt)},
                       {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation}, {"law_channel_edge_guard_samples", r.edgeGuard}, {"jacobian", r.jacobian},
-                      {"coordinates", r.coordinates},
+                      {"line_search_steps", r.lineSearchSteps}, {"coordinates", r.coordinates},
                       {"state_step", r.stateStep}, {"law_input", r.lawInput},
                       {"residual", r.residual}, {"segments", r.segmentsUsed}};
 }

@@ -360,14 +360,33 @@ bool numericsOffset(const Context& cx, const Spec& spec, const std::map<std::str
     return true;
 }
 
-// Central-difference Jacobian of the residual vector in the solver's coordinates (log for
-// log-scaled parameters, the range for linear ones) at `vals`, for the free parameters whose
-// names are in `which`; a column whose step would leave the bounds uses a one-sided step.
+// Jacobian of the residual vector in the solver's coordinates (log for log-scaled parameters,
+// the range for linear ones) at `vals`, for the free parameters whose names are in `which`: from
+// forward sensitivities with IdentifyOptions::analyticJacobian, else by central differences (a
+// column whose step would leave the bounds uses a one-sided step).
 Eigen::MatrixXd residualJacobian(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                                  const std::vector<size_t>& idx, const std::vector<FitParameter>& params,
                                  const std::vector<std::string>& which, size_t rows) {
     Eigen::MatrixXd J(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(which.size()));
     J.setZero();
+    // From forward sensitivities when the options ask for them and every column's parameter is
+    // in vals: in the solver's coordinates, ∂r/∂z = ∂r/∂v · dv/dz (v e^z on a log scale).
+    if (cx.opt->analyticJacobian && !spec.segments &&
+        std::all_of(which.begin(), which.end(), [&](const std::string& k) { return vals.count(k) > 0; })) {
+        std::vector<double> r;
+        Eigen::MatrixXd Jv;
+        if (analyticResidualJacobian(cx, spec, vals, idx, which, r, Jv) && static_cast<size_t>(Jv.rows()) == rows) {
+            for (size_t c = 0; c < which.size(); ++c) {
+                const auto it = std::find_if(params.begin(), params.end(), [&](const FitParameter& p) { return p.name == which[c]; });
+                if (it == params.end()) continue;
+                const double v = vals.at(it->name);
+                J.col(static_cast<Eigen::Index>(c)) =
+                    Jv.col(static_cast<Eigen::Index>(c)) * (it->scale == ParamScale::Log ? v : it->upper - it->lower);
+            }
+            return J;
+        }
+        J.setZero();
+    }
     constexpr double h = 1e-4;
     parallelFor(which.size(), [&](size_t c) {
         const auto it = std::find_if(params.begin(), params.end(), [&](const FitParameter& p) { return p.name == which[c]; });

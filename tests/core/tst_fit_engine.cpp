@@ -283,6 +283,60 @@ private slots:
         QVERIFY(f.residualEvaluations < 0.75 * c.residualEvaluations);
     }
 
+    // FitProblem::analyticJacobian: the same optimum and standard errors as central differences
+    // (b on a log scale: the chain rule through the solver's mapping), with no residual vector
+    // spent on a Jacobian; a callback that declines falls back to the differences.
+    void analyticJacobianReachesTheCentralOptimumWithoutDifferences() {
+        std::mt19937_64 rng(11);
+        std::normal_distribution<double> noise(0.0, 0.01);
+        std::vector<double> t, y;
+        for (int i = 0; i < 300; ++i) {
+            t.push_back(i * 0.01);
+            y.push_back(2.0 * std::exp(-3.0 * t.back()) + noise(rng));
+        }
+        FitProblem central = exponentialDecayFit(t, y);
+        central.parameters[0].value = 7.0;
+        central.parameters[1].value = 0.05;
+        central.multistarts = 1;
+        FitProblem exact = central;
+        long calls = 0;
+        exact.analyticJacobian = [t, &calls](const std::vector<double>& v, std::vector<double>& J) {
+            ++calls;
+            const size_t P = 2;
+            J.assign(t.size() * P, 0.0);
+            for (size_t i = 0; i < t.size(); ++i) {
+                const double e = std::exp(-v[1] * t[i]);
+                J[i * P + 0] = e;
+                J[i * P + 1] = -v[0] * t[i] * e;
+            }
+            return true;
+        };
+        FitProblem declined = central;
+        declined.analyticJacobian = [](const std::vector<double>&, std::vector<double>&) { return false; };
+        const FitResult c = fitLeastSquares(central), a = fitLeastSquares(exact), d = fitLeastSquares(declined);
+        QVERIFY2(c.ok() && a.ok() && d.ok(), (c.message + " / " + a.message + " / " + d.message).c_str());
+        QVERIFY2(std::abs(a.cost - c.cost) <= 1e-6 * c.cost, qPrintable(QString("cost %1 vs %2").arg(a.cost).arg(c.cost)));
+        for (const char* k : {"a", "b"}) {
+            QVERIFY2(std::abs(a.value(k) - c.value(k)) < 0.01 * c.stderrOf(k),
+                     qPrintable(QString("%1: %2 vs %3 (s.e. %4)").arg(k).arg(a.value(k)).arg(c.value(k)).arg(c.stderrOf(k))));
+            QVERIFY(std::abs(a.stderrOf(k) / c.stderrOf(k) - 1.0) < 1e-3);
+        }
+        qInfo("residual vectors: central %ld, analytic %ld (%ld Jacobians)", c.residualEvaluations, a.residualEvaluations, calls);
+        QVERIFY(calls > 0);
+        QVERIFY(a.residualEvaluations < c.residualEvaluations / 2);
+        // Declined everywhere: exactly the differenced fit.
+        QVERIFY(d.values == c.values);
+        QCOMPARE(d.residualEvaluations, c.residualEvaluations);
+    }
+
+    void lineSearchStepsAreValidated() {
+        FitProblem p = exponentialDecayFit({0, 1, 2}, {1, 0.5, 0.25});
+        p.maxLineSearchSteps = 0;
+        bool named = false;
+        for (const auto& issue : p.validate()) named = named || issue.message().find("maxLineSearchSteps") != std::string::npos;
+        QVERIFY(named);
+    }
+
     // The solver differences its Jacobian only at points it has accepted (costs decreasing).
     // The projected line search Ceres runs on bounded problems interpolates cubically by
     // default, which asks for the gradient at every trial point: a whole Jacobian (p more

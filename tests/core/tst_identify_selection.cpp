@@ -325,12 +325,14 @@ private slots:
         o.heldOutAlpha = 1.5;
         o.minHeldOutGain = 1.0;
         o.multistarts = 0;
+        o.lineSearchSteps = 0;
         o.selfTest.replicas = -3;
         const ParamIssues bad = o.validate();
-        QCOMPARE(bad.size(), size_t(6));
+        QCOMPARE(bad.size(), size_t(7));
         const std::string all = formatIssues(bad);
         for (const char* s : {"confounded_vif = 1 is out of range: must be > 1", "null_alpha = 0 is out of range: must be in (0, 1)",
-                              "held_out_alpha = 1.5", "min_held_out_gain = 1 is out of range: must be in [0, 1)", "multistarts = 0 is out of range: must be >= 1", "replicas = -3"})
+                              "held_out_alpha = 1.5", "min_held_out_gain = 1 is out of range: must be in [0, 1)", "multistarts = 0 is out of range: must be >= 1",
+                              "line_search_steps = 0 is out of range: must be >= 1", "replicas = -3"})
             QVERIFY2(all.find(s) != std::string::npos, qPrintable(QString::fromStdString(all)));
     }
     void lawParametersAreTheContactOnes() {
