@@ -24,6 +24,24 @@ FitProblem exponentialDecayFit(std::vector<double> t, std::vector<double> y) {
     return p;
 }
 
+// y = 2 exp(−3t) + noise (σ = 0.01) at 300 samples, fitted from a start far from the optimum
+// (a = 7, b = 0.05), one start: a problem whose Jacobian matters. t: the sample times.
+FitProblem farStartDecay(std::vector<double>& t) {
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> noise(0.0, 0.01);
+    std::vector<double> y;
+    t.clear();
+    for (int i = 0; i < 300; ++i) {
+        t.push_back(i * 0.01);
+        y.push_back(2.0 * std::exp(-3.0 * t.back()) + noise(rng));
+    }
+    FitProblem p = exponentialDecayFit(t, y);
+    p.parameters[0].value = 7.0;
+    p.parameters[1].value = 0.05;
+    p.multistarts = 1;
+    return p;
+}
+
 }  // namespace
 
 class TstFitEngine : public QObject {
@@ -258,17 +276,8 @@ private slots:
     // differences (those are differenced centrally at the optimum either way), from about half
     // the residual vectors, on a problem whose Jacobian matters (start far from the optimum).
     void forwardJacobianReachesTheCentralOptimumForLess() {
-        std::mt19937_64 rng(11);
-        std::normal_distribution<double> noise(0.0, 0.01);
-        std::vector<double> t, y;
-        for (int i = 0; i < 300; ++i) {
-            t.push_back(i * 0.01);
-            y.push_back(2.0 * std::exp(-3.0 * t.back()) + noise(rng));
-        }
-        FitProblem central = exponentialDecayFit(t, y);
-        central.parameters[0].value = 7.0;
-        central.parameters[1].value = 0.05;
-        central.multistarts = 1;
+        std::vector<double> t;
+        FitProblem central = farStartDecay(t);
         FitProblem forward = central;
         forward.jacobian = JacobianKind::Forward;
         const FitResult c = fitLeastSquares(central), f = fitLeastSquares(forward);
@@ -287,17 +296,8 @@ private slots:
     // (b on a log scale: the chain rule through the solver's mapping), with no residual vector
     // spent on a Jacobian; a callback that declines falls back to the differences.
     void analyticJacobianReachesTheCentralOptimumWithoutDifferences() {
-        std::mt19937_64 rng(11);
-        std::normal_distribution<double> noise(0.0, 0.01);
-        std::vector<double> t, y;
-        for (int i = 0; i < 300; ++i) {
-            t.push_back(i * 0.01);
-            y.push_back(2.0 * std::exp(-3.0 * t.back()) + noise(rng));
-        }
-        FitProblem central = exponentialDecayFit(t, y);
-        central.parameters[0].value = 7.0;
-        central.parameters[1].value = 0.05;
-        central.multistarts = 1;
+        std::vector<double> t;
+        FitProblem central = farStartDecay(t);
         FitProblem exact = central;
         long calls = 0;
         exact.analyticJacobian = [t, &calls](const std::vector<double>& v, std::vector<double>& J) {

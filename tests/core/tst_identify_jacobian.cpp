@@ -57,6 +57,17 @@ void checkAgainstDifferences(const Context& cx, const Spec& spec, const std::vec
     }
 }
 
+// The first nRuns runs of D05 (dynamics), cut to `seconds`, prepared as identify prepares them
+// (the context points into opt and runs, which the caller keeps).
+bool prepareD05(int nRuns, double seconds, const IdentifyOptions& opt, std::vector<IdentifyRun>& runs, Context& cx) {
+    runs = rigset::loadRuns(std::string(STICKSLIP_SHARED_DIR) + "/data/synthetic/D05", nRuns, seconds);
+    std::string why;
+    int dec = 0;
+    const bool ok = prepareContext(runs, opt, cx, dec, why);
+    if (!ok) qWarning("%s", why.c_str());
+    return ok;
+}
+
 QStringList catalogue() {
     QStringList out = {""};
     for (const EffectInfo& e : effectCatalogue()) out << QString::fromStdString(e.name);
@@ -89,11 +100,9 @@ private slots:
     void dynamicsMatchesDifferences() {
         QFETCH(QString, effect);
         IdentifyOptions opt;
-        std::vector<IdentifyRun> runs = rigset::loadRuns(std::string(STICKSLIP_SHARED_DIR) + "/data/synthetic/D05", 2, 2.0);
+        std::vector<IdentifyRun> runs;
         Context cx;
-        std::string why;
-        int dec = 0;
-        QVERIFY2(prepareContext(runs, opt, cx, dec, why), why.c_str());
+        QVERIFY(prepareD05(2, 2.0, opt, runs, cx));
         QVERIFY(cx.anyDynamics);
         Spec spec;
         if (!effect.isEmpty()) spec.effects.push_back(effect.toStdString());
@@ -101,11 +110,9 @@ private slots:
     }
     void segmentResidualIsNotCovered() {
         IdentifyOptions opt;
-        std::vector<IdentifyRun> runs = rigset::loadRuns(std::string(STICKSLIP_SHARED_DIR) + "/data/synthetic/D05", 1, 1.0);
+        std::vector<IdentifyRun> runs;
         Context cx;
-        std::string why;
-        int dec = 0;
-        QVERIFY2(prepareContext(runs, opt, cx, dec, why), why.c_str());
+        QVERIFY(prepareD05(1, 1.0, opt, runs, cx));
         Spec spec;
         spec.segments = true;
         std::vector<double> r;
