@@ -56,7 +56,8 @@ using detail::PointEvaluator;
 // same step), with the displaced points requested together so that they can be computed in
 // parallel. Forward needs p new points per Jacobian instead of 2p: the solver's iterations cost
 // about half; its O(δ) error moves only the path (the cost still decreases at every accepted
-// step), not the standard errors, which are differenced centrally at the optimum.
+// step), not the standard errors, which are differenced centrally at the optimum. A problem
+// with its own Jacobian (FitProblem::analyticJacobian) is not differenced at all.
 class DifferenceCost : public ceres::CostFunction {
 public:
     DifferenceCost(PointEvaluator& ev, const Mapping& map, size_t m, double relativeStep, JacobianKind kind)

@@ -48,7 +48,8 @@ enum class LossKind { None, Huber, Cauchy };
 
 // How the solver's Jacobian is differenced while it iterates: central (2p displaced points,
 // error O(δ²)) or forward (p points plus the residual the step already has, error O(δ), as
-// MINPACK's lmdif does). The standard errors at the optimum always use central differences.
+// MINPACK's lmdif does). The standard errors at the optimum use central differences (without
+// FitProblem::analyticJacobian).
 enum class JacobianKind { Central, Forward };
 
 // The residual callback receives ALL parameter values (free and fixed) in the order of
@@ -84,8 +85,8 @@ struct FitProblem {
     std::vector<ParameterScan> scans;  // applied in order, each from the best point of the last
     ResidualFunction residuals;
     BatchResidualFunction batchResiduals;  // optional (else `residuals` is called point by point)
-    // Optional: the solver's Jacobian while it iterates, instead of `jacobian`'s differences.
-    // The standard errors at the optimum are still differenced centrally.
+    // Optional: the Jacobian while the solver iterates and for the standard errors at the
+    // optimum, instead of `jacobian`'s differences and the central ones.
     JacobianFunction analyticJacobian;
     size_t residualCount = 0;
     // Nuisance parameters the residual callback estimates itself for every point (variable

@@ -207,6 +207,7 @@ static JacobianFunction analyticJacobian(const Context& cx, const Spec& spec, co
             if (!free[j]) continue;
             if (!curve.active()) {
                 T[names[j]].assign(names.size(), 0.0);
+                T[names[j]][j] = 1.0;
                 continue;
             }
             std::vector<double> up = pv, dn = pv;
@@ -220,9 +221,6 @@ static JacobianFunction analyticJacobian(const Context& cx, const Spec& spec, co
                 if (d != 0.0) T[k].resize(names.size(), 0.0), T[k][j] = d;
             }
         }
-        if (!curve.active())
-            for (size_t j = 0; j < names.size(); ++j)
-                if (free[j]) T[names[j]][j] = 1.0;
         for (const auto& [k, row] : T) lawNames.push_back(k);
         std::vector<double> r;
         Eigen::MatrixXd J;

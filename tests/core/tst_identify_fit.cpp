@@ -71,6 +71,43 @@ private slots:
         QVERIFY2(stalled, "no refit ended at its start: the premise of this test does not hold");
     }
 
+    // IdentifyOptions::analyticJacobian: the baseline from its far start and a candidate
+    // warm-started in the steady-state curve's coordinates (the chain rule through κ, s, v_c)
+    // end where the differenced fits end, within the solver's tolerance, with standard errors
+    // that agree; the sensitivities' fits take fewer residual vectors.
+    void sensitivityJacobianReachesTheDifferencedOptimum() {
+        PreparedRuns diff;
+        PreparedRuns sens;
+        QVERIFY2(diff.ok && sens.ok, (diff.why + sens.why).c_str());
+        sens.opt.analyticJacobian = true;
+        const std::vector<size_t> idx = {0, 1, 2, 3};
+        long fits = 0;
+        const FitOutcome d0 = fitSpec(diff.cx, Spec{}, baselineStart(diff.cx, idx), idx, 1, fits, true);
+        const FitOutcome s0 = fitSpec(sens.cx, Spec{}, baselineStart(sens.cx, idx), idx, 1, fits, true);
+        QVERIFY2(d0.ok && s0.ok, (d0.message + s0.message).c_str());
+        Spec lag;
+        lag.effects = {"frictional_lag"};
+        std::map<std::string, double> start = d0.values;
+        start["frictional_lag.tau_s"] = 2e-3;
+        const FitOutcome d1 = fitSpec(diff.cx, lag, start, idx, 1, fits, false, FitStart::NearOptimum);
+        const FitOutcome s1 = fitSpec(sens.cx, lag, start, idx, 1, fits, false, FitStart::NearOptimum);
+        QVERIFY2(d1.ok && s1.ok, (d1.message + s1.message).c_str());
+        for (const auto& [d, s] : {std::pair{&d0, &s0}, std::pair{&d1, &s1}}) {
+            qInfo("ss differenced %.9g (%ld residual vectors), sensitivities %.9g (%ld)", d->ss, d->fit.residualEvaluations, s->ss,
+                  s->fit.residualEvaluations);
+            QVERIFY(std::abs(s->ss - d->ss) <= 1e-4 * d->ss);
+            for (const ParamEstimate& e : d->estimates) {
+                const auto it = std::find_if(s->estimates.begin(), s->estimates.end(),
+                                             [&](const ParamEstimate& x) { return x.name == e.name; });
+                QVERIFY(it != s->estimates.end());
+                if (!std::isfinite(e.stderr_)) continue;  // not identifiable: no scale to compare on
+                QVERIFY2(std::abs(it->value - e.value) <= 0.1 * e.stderr_ + 1e-9 * std::abs(e.value), e.name.c_str());
+                QVERIFY2(std::abs(it->stderr_ / e.stderr_ - 1.0) < 0.05, e.name.c_str());
+            }
+            QVERIFY(s->fit.residualEvaluations < d->fit.residualEvaluations);
+        }
+    }
+
     // A parallelFor inside another's task runs on that task's thread (identify_internal.hpp):
     // every index once, and the caller's thread is outside any task again afterwards.
     void nestedParallelForRunsOnTheTasksThread() {
