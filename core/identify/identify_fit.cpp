@@ -222,9 +222,8 @@ static JacobianFunction analyticJacobian(const Context& cx, const Spec& spec, co
             }
         }
         for (const auto& [k, row] : T) lawNames.push_back(k);
-        std::vector<double> r;
         Eigen::MatrixXd J;
-        if (!analyticResidualJacobian(cx, spec, vals, idx, lawNames, r, J)) return false;
+        if (!analyticResidualJacobian(cx, spec, vals, idx, lawNames, J)) return false;
         const size_t P = names.size(), m = static_cast<size_t>(J.rows());
         jac.assign(m * P, 0.0);
         for (size_t c = 0; c < lawNames.size(); ++c) {

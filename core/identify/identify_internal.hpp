@@ -179,11 +179,11 @@ bool simulateLawRunSensitivity(const Context& cx, const Prepared& p, const Exten
 // The Jacobian of residualVector over the runs idx at vals with respect to `names` (keys of
 // vals), rows in residualVector's order: the law channel from forward sensitivities (filtered as
 // its residual is), the equation-of-motion channel in closed form. Also the residuals
-// themselves, from the same runs. False for the segment residual or a name neither channel
-// covers (the caller then differences).
+// themselves into `r` when given, from the same runs. False for the segment residual or a name
+// neither channel covers (the caller then differences).
 bool analyticResidualJacobian(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
-                              const std::vector<size_t>& idx, const std::vector<std::string>& names, std::vector<double>& r,
-                              Eigen::MatrixXd& J);
+                              const std::vector<size_t>& idx, const std::vector<std::string>& names, Eigen::MatrixXd& J,
+                              std::vector<double>* r = nullptr);
 // Residuals of one run appended to `r` (see identify_residuals.cpp); with `law`, the law run
 // computed by simulateLawRun for a model with the same law parameters is used instead of a new
 // simulation (identical numbers).

@@ -17,7 +17,7 @@ enum class Enters { Law, Mass, RigDamping, Nowhere };
 // Rows [off, off + channels·n) of r and J for run p; false when the run fails or a name is
 // covered by neither channel.
 bool runJacobian(const Context& cx, const Spec& spec, const Prepared& p, const ExtendedModel& m, double mass,
-                 const std::vector<std::string>& names, size_t off, std::vector<double>& r, Eigen::MatrixXd& J) {
+                 const std::vector<std::string>& names, size_t off, std::vector<double>* r, Eigen::MatrixXd& J) {
     const IdentifyRun& run = *p.run;
     const size_t n = p.size();
     const bool dyn = run.setup == SetupKind::Dynamics;
@@ -41,11 +41,13 @@ bool runJacobian(const Context& cx, const Spec& spec, const Prepared& p, const E
     LawRun law;
     Eigen::MatrixXd dM;
     if (!simulateLawRunSensitivity(cx, p, m, lawNames, law, dM)) return false;
-    std::vector<double> rr;
-    double ss = 0, count = 0;
-    if (!runResiduals(cx, p, m, mass, rr, ss, count, nullptr, nullptr, nullptr, false, &law)) return false;
-    if (rr.size() != (dyn ? 2 : 1) * n) return false;
-    std::copy(rr.begin(), rr.end(), r.begin() + static_cast<long>(off));
+    if (r) {
+        std::vector<double> rr;
+        double ss = 0, count = 0;
+        if (!runResiduals(cx, p, m, mass, rr, ss, count, nullptr, nullptr, nullptr, false, &law)) return false;
+        if (rr.size() != (dyn ? 2 : 1) * n) return false;
+        std::copy(rr.begin(), rr.end(), r->begin() + static_cast<long>(off));
+    }
     const Eigen::Index o = static_cast<Eigen::Index>(off);
     // The law channel: (filtered(measured) − F)/rms, filtered(y) = F + filter(mask·(y − F))
     // (Prepared::filtered) is affine in y, so its derivative is filter(mask·∂y).
@@ -78,8 +80,8 @@ bool runJacobian(const Context& cx, const Spec& spec, const Prepared& p, const E
 }  // namespace
 
 bool analyticResidualJacobian(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
-                              const std::vector<size_t>& idx, const std::vector<std::string>& names, std::vector<double>& r,
-                              Eigen::MatrixXd& J) {
+                              const std::vector<size_t>& idx, const std::vector<std::string>& names, Eigen::MatrixXd& J,
+                              std::vector<double>* r) {
     if (spec.segments) return false;
     double mass = kNaN;
     const ExtendedModel m = buildModel(cx, spec, vals, mass);
@@ -89,7 +91,7 @@ bool analyticResidualJacobian(const Context& cx, const Spec& spec, const std::ma
         offsets.push_back(total);
         total += cx.runs[i].size() * (cx.runs[i].run->setup == SetupKind::Dynamics ? 2 : 1);
     }
-    r.assign(total, 0.0);
+    if (r) r->assign(total, 0.0);
     J.setZero(static_cast<Eigen::Index>(total), static_cast<Eigen::Index>(names.size()));
     std::vector<char> ok(idx.size(), 0);
     parallelFor(idx.size(), [&](size_t k) {

@@ -373,9 +373,8 @@ Eigen::MatrixXd residualJacobian(const Context& cx, const Spec& spec, const std:
     // in vals: in the solver's coordinates, ∂r/∂z = ∂r/∂v · dv/dz (v e^z on a log scale).
     if (cx.opt->analyticJacobian && !spec.segments &&
         std::all_of(which.begin(), which.end(), [&](const std::string& k) { return vals.count(k) > 0; })) {
-        std::vector<double> r;
         Eigen::MatrixXd Jv;
-        if (analyticResidualJacobian(cx, spec, vals, idx, which, r, Jv) && static_cast<size_t>(Jv.rows()) == rows) {
+        if (analyticResidualJacobian(cx, spec, vals, idx, which, Jv) && static_cast<size_t>(Jv.rows()) == rows) {
             for (size_t c = 0; c < which.size(); ++c) {
                 const auto it = std::find_if(params.begin(), params.end(), [&](const FitParameter& p) { return p.name == which[c]; });
                 if (it == params.end()) continue;
