@@ -108,9 +108,10 @@ public:
         const double a = std::abs(trial), s = trial >= 0.0 ? 1.0 : -1.0;
         // The strength at the step's start: y0 + t_N c1 (e^{α/r} − 1) with, without a lag,
         // y0 = t_N (μ_eff + h) and c1 = C1; with one (FrictionalLag::Hold), y0 = E Y_act +
-        // (q − E) Y_law,n + w t_N (μ_eff + h) and c1 = w C1.
+        // (q − E) Y_law,n + w t_N (μ_eff + h) and c1 = w C1. Only c1 and y0's derivative are
+        // needed: the step's Δλ and state come from the run itself.
         const double mh = muAndHealing(st, s, dMH_);
-        double y0 = tN_ * mh, c1 = b.C1;
+        double c1 = b.C1;
         for (size_t j = 0; j < p_; ++j) dy0_[j] = tN_ * dMH_[j], dc1_[j] = sd_.C1[j];
         if (fx.frictionalLag) {
             const double tau = fx.frictionalLag->tau_s;
@@ -118,7 +119,6 @@ public:
             const double e0 = std::exp(st.alpha / b.r);
             const double dEdTau = hd.E * dt / (tau * tau), dqdTau = (1.0 - hd.E) / dt - hd.E / tau;
             const double wLag = hd.w, yLaw = tN_ * (mh + b.C1 * (e0 - 1.0));
-            y0 = hd.E * st.aux[2] + (hd.q - hd.E) * yLaw + wLag * tN_ * mh;
             c1 = wLag * b.C1;
             for (size_t j = 0; j < p_; ++j) {
                 dyLaw_[j] = tN_ * (dMH_[j] + (e0 - 1.0) * sd_.C1[j] + b.C1 * e0 * (dA_[j] - st.alpha * sd_.r[j] / b.r) / b.r);
@@ -136,7 +136,7 @@ public:
             if (fx.frictionalLag) dY_.swap(dyTrial_);
             return;
         }
-        slipStep(st, r, dt, cache, a, s, y0, c1);
+        slipStep(st, r, dt, cache, a, s, c1);
     }
 
     void sample(size_t i) override {
@@ -168,7 +168,7 @@ private:
     // A slipping step: Δλ's derivative from R(Δλ) = a − ε Δλ − y0 − t_N c1 (e^{α/r} − 1) − η t_N Δλ/Δt = 0,
     // then the new state's.
     void slipStep(const LawState& st, const ReturnMapResult& r, double dt, const ExtendedLaw::ExpCache& cache, double a,
-                  double s, double y0, double c1) {
+                  double s, double c1) {
         const EffectSet& fx = law_.fx;
         const RateStateParams& b = law_.base;
         const double eps = law_.eps_N_per_m, x = r.slipIncrement_m;
