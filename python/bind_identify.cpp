@@ -100,7 +100,7 @@ Setters<IdentifyRequest> identifySetters() {
         o("restart_margin", &IdentifyOptions::restartMargin),
         o("null_alpha", &IdentifyOptions::nullAlpha), o("null_replicas", &IdentifyOptions::nullReplicas),
         o("null_numerics", &IdentifyOptions::nullNumerics),
-        o("held_out_alpha", &IdentifyOptions::heldOutAlpha), o("min_held_out_gain", &IdentifyOptions::minHeldOutGain),
+        o("held_out_alpha", &IdentifyOptions::heldOutAlpha), o("held_out_mid_p", &IdentifyOptions::heldOutMidP), o("min_held_out_gain", &IdentifyOptions::minHeldOutGain),
         o("identifiability_alpha", &IdentifyOptions::identifiabilityAlpha), o("decimate", &IdentifyOptions::decimate),
         o("substeps", &IdentifyOptions::substeps), o("multistarts", &IdentifyOptions::multistarts),
         o("max_segments", &IdentifyOptions::maxSegmentsPerRun), o("seed", &IdentifyOptions::seed),

@@ -289,15 +289,18 @@ PairedTest pairedLogRatioTest(const std::vector<double>& before, const std::vect
     if (d.size() <= 20) {
         const double observed = std::accumulate(d.begin(), d.end(), 0.0);
         const uint32_t patterns = 1u << d.size();
-        uint32_t atLeast = 0;
+        const double tol = 1e-12 * (std::abs(observed) + 1.0);
+        uint32_t above = 0, equal = 0;  // patterns whose sum exceeds / ties the observed one
         for (uint32_t m = 0; m < patterns; ++m) {
             double sum = 0;
             for (size_t i = 0; i < d.size(); ++i) sum += ((m >> i) & 1u) ? -std::abs(d[i]) : std::abs(d[i]);
-            if (sum >= observed - 1e-12 * (std::abs(observed) + 1.0)) ++atLeast;
+            if (sum > observed + tol) ++above;
+            else if (sum >= observed - tol) ++equal;
         }
-        r.exactP = static_cast<double>(atLeast) / static_cast<double>(patterns);
+        r.exactP = static_cast<double>(above + equal) / static_cast<double>(patterns);
+        r.midP = (static_cast<double>(above) + 0.5 * static_cast<double>(equal)) / static_cast<double>(patterns);
     } else {
-        r.exactP = std::numeric_limits<double>::quiet_NaN();
+        r.exactP = r.midP = std::numeric_limits<double>::quiet_NaN();
     }
     return r;
 }

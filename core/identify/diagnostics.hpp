@@ -105,12 +105,17 @@ double gammaQuantile(double p, double shape, double scale);
 // above). It is the right test when the runs improve by very different amounts (one run's
 // large gain inflates sd(d) and can sink the t-test although every run improved), but its
 // smallest p is 2^−K: with K ≤ 4 it can never reach 5 %.
+// Its mid-p (Lancaster 1961; Agresti, Categorical Data Analysis, 3rd ed., §1.4.5) counts the
+// observed pattern's own probability half: P(S > s) + ½ P(S = s). A test with 2^K outcomes can
+// only reject at multiples of 2^−K, so the plain p overstates the evidence against the null by
+// up to one step; the mid-p has mean ½ under the null, as a continuous p-value has.
 struct PairedTest {
     int units = 0;
     double meanLogRatio = 0;  // mean d (> 0: after is better)
     double t = 0;
     double pValue = 1;        // one-sided, t-test
-    double exactP = 1;        // one-sided, sign-flip permutation test
+    double exactP = 1;        // one-sided, sign-flip permutation test: P(S ≥ s)
+    double midP = 1;          // the same test's mid-p: P(S > s) + ½ P(S = s)
 };
 PairedTest pairedLogRatioTest(const std::vector<double>& before, const std::vector<double>& after);
 

@@ -390,6 +390,7 @@ void runLoop(Loop& L, const std::vector<IdentifyRun>& runs) {
     L.episodes = slipEpisodes(cx, L.fitIdx, opt.stickVelocity_mps);
     res.slipEpisodes = L.episodes;
     res.heldOutAlpha = opt.heldOutAlpha;
+    res.heldOutMidP = opt.heldOutMidP;
     res.minHeldOutGain = opt.minHeldOutGain;
     res.nullAlpha = opt.nullAlpha;
     res.nullReplicas = opt.nullReplicas;

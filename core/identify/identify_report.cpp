@@ -68,8 +68,8 @@ std::string selectionRule(const IdentifyResult& r) {
            " noise replicas of these runs give (AR(1) noise per run and channel, level and colour from the current residual, "
            "linearised candidate model) AND lowers the held-out NRMSE (leave-one-run-out, or the validation runs) consistently "
            "over the K held-out runs (one-sided p < " + g(r.heldOutAlpha) +
-           " on the runs' ln MSE ratios: the exact sign-flip test when 2^-K < " + g(r.heldOutAlpha) +
-           ", else the paired t-test) AND by at least " + g(100.0 * r.minHeldOutGain) +
+           " on the runs' ln MSE ratios: the exact sign-flip test" + (r.heldOutMidP ? std::string(" (its mid-p) when 2^-(K+1) < ") : std::string(" when 2^-K < ")) +
+           g(r.heldOutAlpha) + ", else the paired t-test) AND by at least " + g(100.0 * r.minHeldOutGain) +
            " % of the held-out MSE on average over those runs (relevance margin) AND its size parameter differs from the value "
            "at which the effect vanishes by more than t_(K-1, 1-alpha/2) standard errors (alpha = " + g(r.identifiabilityAlpha) +
            "; the jackknife over the leave-one-run-out fits or, where larger, the Jacobian's x sqrt(tau_int)). Once the rounds "
@@ -129,7 +129,8 @@ nlohmann::json candidateJson(const CandidateScore& c) {
                                                                                  {"mean_log_mse_ratio", num(c.heldOutMeanLogRatio)},
                                                                                  {"t", num(c.heldOutT)},
                                                                                  {"p_one_sided", num(c.heldOutP)},
-                                                                                 {"test", c.heldOutExact ? "exact sign-flip" : "paired t"},
+                                                                                 {"test", !c.heldOutExact ? "paired t" : c.heldOutMidP ? "exact sign-flip, mid-p" : "exact sign-flip"},
+                                                                                 {"p_exact", num(c.heldOutExactP)},
                                                                                  {"log_mse_ratio_per_run", [&] {
                                                                                       nlohmann::json a = nlohmann::json::array();
                                                                                       for (double v : c.heldOutLogRatios) a.push_back(num(v));
@@ -182,7 +183,7 @@ nlohmann::json candidateJson(const CandidateScore& c) {
 nlohmann::json selectionJson(const IdentifyResult& r) {
     return {{"criterion", selectionRule(r)},
                       {"null_alpha", num(r.nullAlpha)}, {"null_replicas", r.nullReplicas}, {"bic_margin", num(r.bicMargin)}, {"null_numerics", r.nullNumerics}, {"restart_margin", num(r.restartMargin)},
-                      {"held_out_alpha", num(r.heldOutAlpha)}, {"min_held_out_gain", num(r.minHeldOutGain)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
+                      {"held_out_alpha", num(r.heldOutAlpha)}, {"held_out_mid_p", r.heldOutMidP}, {"min_held_out_gain", num(r.minHeldOutGain)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
                       {"tau_int_samples", num(r.tauInt)},
                       {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation}, {"law_channel_edge_guard_samples", r.edgeGuard}, {"jacobian", r.jacobian},
                       {"line_search_steps", r.lineSearchSteps}, {"coordinates", r.coordinates},

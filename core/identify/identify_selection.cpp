@@ -131,13 +131,16 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
     sc.heldOutUnits = pt.units;
     sc.heldOutMeanLogRatio = pt.meanLogRatio;
     sc.heldOutT = pt.t;
-    // The exact sign-flip test where it can decide (its smallest p, 2^−K, is below α: K ≥ 5 at
-    // 5 %), else the t-test. On D03 every held-out run improved (log ratios 0.39, 0.11, 0.08,
-    // 1.39, 0.08) and the t-test still gave p = 0.089, because one run's large gain inflated
-    // the spread; the exact test gives 1/32.
-    const bool exactDecides = pt.units >= 1 && std::isfinite(pt.exactP) && std::ldexp(1.0, -pt.units) < opt.heldOutAlpha;
+    // The exact sign-flip test where it can decide (its smallest p is below α: 2^−K plain, K ≥ 5
+    // at 5 %; 2^−(K+1) as a mid-p, K ≥ 4), else the t-test. On D03 every held-out run improved
+    // (log ratios 0.39, 0.11, 0.08, 1.39, 0.08) and the t-test still gave p = 0.089, because one
+    // run's large gain inflated the spread; the exact test gives 1/32 (mid-p 1/64).
+    const double smallest = std::ldexp(opt.heldOutMidP ? 0.5 : 1.0, -pt.units);
+    const bool exactDecides = pt.units >= 1 && std::isfinite(pt.exactP) && smallest < opt.heldOutAlpha;
     sc.heldOutExact = exactDecides;
-    sc.heldOutP = exactDecides ? pt.exactP : pt.pValue;
+    sc.heldOutMidP = exactDecides && opt.heldOutMidP;
+    sc.heldOutExactP = pt.exactP;
+    sc.heldOutP = !exactDecides ? pt.pValue : opt.heldOutMidP ? pt.midP : pt.exactP;
     // With fewer than 3 held-out runs the paired t-test has at most one degree of freedom (the
     // spread of two log ratios; t_{0.95,1} = 6.31) and no power: every held-out run must then
     // improve instead (a weaker guard, reported as such).
@@ -152,7 +155,9 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
     } else if (!(sc.heldOutP < opt.heldOutAlpha)) {
         sc.reason = "held-out error lower pooled (" + fmt(with.validationNrmse, "%.6g") + " vs " +
                     fmt(ref.validationNrmse, "%.6g") + ") but not consistently over the " + std::to_string(pt.units) +
-                    " held-out runs: " + (exactDecides ? std::string("exact sign-flip test") : "paired t = " + fmt(pt.t)) +
+                    " held-out runs: " + (!exactDecides ? "paired t = " + fmt(pt.t)
+                                                          : opt.heldOutMidP ? std::string("exact sign-flip test, mid-p")
+                                                                            : std::string("exact sign-flip test")) +
                     ", one-sided p = " + fmt(sc.heldOutP) +
                     " >= " + fmt(opt.heldOutAlpha) + " (mean log MSE ratio " + fmt(pt.meanLogRatio) + ")";
         return false;

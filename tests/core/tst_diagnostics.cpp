@@ -84,6 +84,8 @@ private slots:
             }
             QCOMPARE(mixed.exactP, n / 16.0);
             QCOMPARE(n, 3);  // all +, only the smallest flipped, only ln(1/0.9) flipped
+            // The mid-p counts the observed pattern half: (2 + ½)/16.
+            QCOMPARE(mixed.midP, 2.5 / 16.0);
         }
         // Every one of five runs better, by very different amounts (D03's frictional lag): the
         // t-test is not significant, the exact test gives its smallest p, 1/32.
@@ -91,6 +93,26 @@ private slots:
                                                      {1, 1, 1, 1, 1});
         QVERIFY(hetero.pValue > 0.05);
         QCOMPARE(hetero.exactP, 1.0 / 32.0);
+        QCOMPARE(hetero.midP, 0.5 / 32.0);
+        // Tied patterns count half with the observed one: |d| all equal, one of four negative; the
+        // sums ≥ the observed are the all-positive pattern (above) and the four with one flip (tied).
+        const PairedTest tied = pairedLogRatioTest({2, 2, 2, 1}, {1, 1, 1, 2});
+        QCOMPARE(tied.exactP, 5.0 / 16.0);
+        QCOMPARE(tied.midP, 3.0 / 16.0);
+        // Under the null every sign pattern is equally likely: the mid-p averages ½ over them.
+        {
+            const double ad[5] = {0.3, 0.1, 0.7, 0.2, 0.05};
+            double mean = 0;
+            for (int pat = 0; pat < 32; ++pat) {
+                std::vector<double> b, a;
+                for (int i = 0; i < 5; ++i) {
+                    b.push_back(std::exp(((pat >> i) & 1) ? -ad[i] : ad[i]));
+                    a.push_back(1.0);
+                }
+                mean += pairedLogRatioTest(b, a).midP / 32.0;
+            }
+            QVERIFY2(std::abs(mean - 0.5) < 1e-12, qPrintable(QString::number(mean)));
+        }
         // Beyond 20 units no enumeration: NaN.
         QVERIFY(std::isnan(pairedLogRatioTest(std::vector<double>(21, 2.0), std::vector<double>(21, 1.0)).exactP));
         // Missing units are skipped; fewer than two: no test.
