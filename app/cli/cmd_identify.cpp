@@ -153,7 +153,7 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
                     "level of the one-sided paired test over held-out runs an effect must pass, in (0, 1)")->capture_default_str();
     twoWayFlag("--held-out-mid-p", "--held-out-plain-p", o->req.options.heldOutMidP,
                "the exact sign-flip test of the held-out runs uses its mid-p, P(S > s) + P(S = s)/2, the usual correction for "
-               "a test with 2^K outcomes (default); --held-out-plain-p: P(S >= s), which with 5 runs at 5 % demands all 5 better");
+               "a test with 2^K outcomes, when K >= 5 runs (default); --held-out-plain-p: P(S >= s), which with 5 runs at 5 % demands all 5 better");
     cmd->add_option("--min-held-out-gain", o->req.options.minHeldOutGain,
                     "relevance margin: an effect must also lower the held-out MSE by at least this fraction on average "
                     "over the held-out runs, in [0, 1); 0: significance alone")->capture_default_str();

@@ -106,8 +106,8 @@ struct IdentifyOptions {
     //  (2) held-out error: lower pooled AND lower consistently over the held-out runs, d_i =
     //      ln(MSE_i before / MSE_i after) over the K held-out runs (leave-one-run-out, or the
     //      validation runs), one-sided p < heldOutAlpha: the exact sign-flip test of Σ d_i when it
-    //      can decide (its smallest p below α: with the mid-p, 2^−(K+1) < α, K ≥ 4 at 5 %), else
-    //      the paired t-test with K−1 degrees of freedom. Runs are the independent units of the data (separate recordings); the
+    //      can decide (2^−K < α, K ≥ 5 at 5 %), judged by its mid-p (heldOutMidP), else the paired
+    //      t-test with K−1 degrees of freedom. Runs are the independent units of the data (separate recordings); the
     //      samples within a run are not, and a model error that is structured (not noise)
     //      is what (1) cannot tell from an effect: its gain is real in-sample for any
     //      n_eff. The paired test asks whether the gain carries over to unseen runs beyond the

@@ -68,8 +68,8 @@ std::string selectionRule(const IdentifyResult& r) {
            " noise replicas of these runs give (AR(1) noise per run and channel, level and colour from the current residual, "
            "linearised candidate model) AND lowers the held-out NRMSE (leave-one-run-out, or the validation runs) consistently "
            "over the K held-out runs (one-sided p < " + g(r.heldOutAlpha) +
-           " on the runs' ln MSE ratios: the exact sign-flip test" + (r.heldOutMidP ? std::string(" (its mid-p) when 2^-(K+1) < ") : std::string(" when 2^-K < ")) +
-           g(r.heldOutAlpha) + ", else the paired t-test) AND by at least " + g(100.0 * r.minHeldOutGain) +
+           " on the runs' ln MSE ratios: the exact sign-flip test" + (r.heldOutMidP ? std::string(", by its mid-p,") : std::string()) +
+           " when 2^-K < " + g(r.heldOutAlpha) + ", else the paired t-test) AND by at least " + g(100.0 * r.minHeldOutGain) +
            " % of the held-out MSE on average over those runs (relevance margin) AND its size parameter differs from the value "
            "at which the effect vanishes by more than t_(K-1, 1-alpha/2) standard errors (alpha = " + g(r.identifiabilityAlpha) +
            "; the jackknife over the leave-one-run-out fits or, where larger, the Jacobian's x sqrt(tau_int)). Once the rounds "

@@ -131,12 +131,14 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
     sc.heldOutUnits = pt.units;
     sc.heldOutMeanLogRatio = pt.meanLogRatio;
     sc.heldOutT = pt.t;
-    // The exact sign-flip test where it can decide (its smallest p is below α: 2^−K plain, K ≥ 5
-    // at 5 %; 2^−(K+1) as a mid-p, K ≥ 4), else the t-test. On D03 every held-out run improved
-    // (log ratios 0.39, 0.11, 0.08, 1.39, 0.08) and the t-test still gave p = 0.089, because one
-    // run's large gain inflated the spread; the exact test gives 1/32 (mid-p 1/64).
-    const double smallest = std::ldexp(opt.heldOutMidP ? 0.5 : 1.0, -pt.units);
-    const bool exactDecides = pt.units >= 1 && std::isfinite(pt.exactP) && smallest < opt.heldOutAlpha;
+    // The exact sign-flip test where it can decide (its smallest plain p, 2^−K, is below α: K ≥ 5
+    // at 5 %), judged by its mid-p (IdentifyOptions::heldOutMidP), else the t-test. On D03 every
+    // held-out run improved (log ratios 0.39, 0.11, 0.08, 1.39, 0.08) and the t-test still gave
+    // p = 0.089, because one run's large gain inflated the spread; the exact test gives 1/32
+    // (mid-p 1/64). Not at K = 4, where the mid-p of "all four better" (1/32) would pass a pattern
+    // whose null probability is 1/16: measured with four of the five runs of the shared sets, it
+    // found D03's lag but added a false sensor mass on D09 (docs/identify-results.md, session 61).
+    const bool exactDecides = pt.units >= 1 && std::isfinite(pt.exactP) && std::ldexp(1.0, -pt.units) < opt.heldOutAlpha;
     sc.heldOutExact = exactDecides;
     sc.heldOutMidP = exactDecides && opt.heldOutMidP;
     sc.heldOutExactP = pt.exactP;
