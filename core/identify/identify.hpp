@@ -107,11 +107,11 @@ struct IdentifyOptions {
     //      ln(MSE_i before / MSE_i after) over the K held-out runs (leave-one-run-out, or the
     //      validation runs), one-sided p < heldOutAlpha: the exact sign-flip test of Σ d_i when it
     //      can decide (2^−K < α, K ≥ 5 at 5 %), judged by its mid-p (heldOutMidP), else the paired
-    //      t-test with K−1 degrees of freedom. Runs are the independent units of the data (separate recordings); the
-    //      samples within a run are not, and a model error that is structured (not noise)
-    //      is what (1) cannot tell from an effect: its gain is real in-sample for any
-    //      n_eff. The paired test asks whether the gain carries over to unseen runs beyond the
-    //      run-to-run scatter of the gain.
+    //      t-test with K−1 degrees of freedom. Runs are the independent units of the data
+    //      (separate recordings); the samples within a run are not, and a model error that is
+    //      structured (not noise) is what (1) cannot tell from an effect: its gain is real
+    //      in-sample for any n_eff. The paired test asks whether the gain carries over to
+    //      unseen runs beyond the run-to-run scatter of the gain.
     //  (2b) relevance: the mean of those d_i reaches ln(1/(1 − minHeldOutGain)) (below).
     //  (3) identifiability: the effect's size parameter (params[0]) differs from the value at
     //      which the effect vanishes by more than t_{K−1, 1−α/2} (α = identifiabilityAlpha)
