@@ -95,6 +95,10 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
                   << (b.leftLater() ? "; the baseline adopted later has it at " + std::to_string(b.leftLaterTo) : std::string())
                   << ")\n";
     for (const auto& e : res.effectsAdded)
+        if (e.lawStep.checked())
+            std::cout << e.name << ": removes " << 100.0 * e.lawStep.gain() << " % of the fit's sum of squares at the law's step, "
+                      << 100.0 * e.lawStep.gainRefined() << " % with every law step split in " << e.lawStep.refinement << "\n";
+    for (const auto& e : res.effectsAdded)
         for (const std::string& c : e.confoundedWith)
             std::cout << "confounded: " << c << " trades off with " << e.name << " (not added; " << e.name
                       << "'s size may stand for both)\n";

@@ -248,6 +248,13 @@ void addEffect(Loop& L, Round& R, Tried& chosen, const ModelErrors& me, double h
     for (const std::string& sname : info.pointers)
         for (const SignalCorrelation& c : L.curDiag.correlations)
             if (c.signal == sname) ae.pointedBy.push_back(c);
+    if (!L.spec.segments && !chosen.spec.segments) {
+        ae.lawStep.refinement = kLawResolutionRefinement;
+        ae.lawStep.ssBefore = evalSSRefined(L.cx, L.spec, L.cur.values, L.fitIdx, 1);
+        ae.lawStep.ssBeforeRefined = evalSSRefined(L.cx, L.spec, L.cur.values, L.fitIdx, kLawResolutionRefinement);
+        ae.lawStep.ssAfter = evalSSRefined(L.cx, chosen.spec, chosen.fit.values, L.fitIdx, 1);
+        ae.lawStep.ssAfterRefined = evalSSRefined(L.cx, chosen.spec, chosen.fit.values, L.fitIdx, kLawResolutionRefinement);
+    }
     L.res.effectsAdded.push_back(ae);
     L.spec = chosen.spec;
     L.cur = chosen.fit;

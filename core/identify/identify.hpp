@@ -357,6 +357,18 @@ struct AddedEffect {
     std::vector<SignalCorrelation> pointedBy;  // the effect's signals in the residual before it was added
     double deltaBic = 0;
     double heldOutBefore = 0, heldOutAfter = 0;
+    // The fitting runs' sum of squares of the model before and after this effect, both at their
+    // fitted points: at the law's step as fitted ("used") and with every law step split in
+    // `refinement` (law_resolution.cpp). A gain the finer step takes away was made of the law's
+    // time discretisation, not of the data. NaN for the segment residual (no law channel).
+    struct LawStepGain {
+        int refinement = 0;
+        double ssBefore = std::numeric_limits<double>::quiet_NaN(), ssAfter = ssBefore;
+        double ssBeforeRefined = ssBefore, ssAfterRefined = ssBefore;
+        double gain() const { return 1.0 - ssAfter / ssBefore; }  // fraction of the sum removed
+        double gainRefined() const { return 1.0 - ssAfterRefined / ssBeforeRefined; }
+        bool checked() const { return refinement > 1 && std::isfinite(gain()) && std::isfinite(gainRefined()); }
+    } lawStep;
     // Candidates that trade off with this effect (selection test 0): the data cannot tell them
     // apart from it, so this effect's size may stand for them too.
     std::vector<std::string> confoundedWith;

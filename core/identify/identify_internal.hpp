@@ -194,6 +194,11 @@ bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, 
 // one the fits used, run by run (identify.hpp, LawResolution); unchecked when a run fails.
 constexpr int kLawResolutionRefinement = 8;
 LawResolution checkLawResolution(const Context& cx, const ExtendedModel& m, double mass, int refinement);
+// evalSS with the law channel's every step split in `refinement` (>= 1; 1 is evalSS): how a
+// model's fit depends on the law's time step. Infinity where a run fails; NaN for the segment
+// residual, which has no law channel of its own.
+double evalSSRefined(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
+                     const std::vector<size_t>& idx, int refinement);
 size_t residualCount(const Context& cx, const std::vector<size_t>& idx);
 bool residualVector(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
                     const std::vector<size_t>& idx, std::vector<double>& r, std::vector<NoiseBlock>* blocks = nullptr);

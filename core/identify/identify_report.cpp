@@ -108,6 +108,14 @@ nlohmann::json addedJson(const AddedEffect& e) {
                      {"held_out_nrmse_before", num(e.heldOutBefore)},
                      {"held_out_nrmse_after", num(e.heldOutAfter)},
                      {"confounded_with", e.confoundedWith}});
+    if (e.lawStep.checked())
+        a["law_step_check"] = {{"refinement", e.lawStep.refinement},
+                               {"fit_ss_before", num(e.lawStep.ssBefore)},
+                               {"fit_ss_after", num(e.lawStep.ssAfter)},
+                               {"fit_ss_before_refined", num(e.lawStep.ssBeforeRefined)},
+                               {"fit_ss_after_refined", num(e.lawStep.ssAfterRefined)},
+                               {"gain", num(e.lawStep.gain())},
+                               {"gain_refined", num(e.lawStep.gainRefined())}};
     if (!e.note.empty()) a["note"] = e.note;
     return a;
 }

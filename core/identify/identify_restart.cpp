@@ -185,6 +185,10 @@ void adoptCurrent(Loop& L, const std::string& note) {
     for (AddedEffect& ae : L.res.effectsAdded) ae.params = effectParams(L.cur, ae.name);
     AddedEffect& last = L.res.effectsAdded.back();
     last.heldOutAfter = L.curHeldOut;
+    if (last.lawStep.refinement > 1) {  // the model before it is unchanged; the one after is refitted
+        last.lawStep.ssAfter = evalSSRefined(L.cx, L.spec, L.cur.values, L.fitIdx, 1);
+        last.lawStep.ssAfterRefined = evalSSRefined(L.cx, L.spec, L.cur.values, L.fitIdx, last.lawStep.refinement);
+    }
     last.note = (last.note.empty() ? "" : last.note + "; ") + note;
     if (!heldOutNote.empty()) last.note += "; " + heldOutNote;
 }

@@ -1,5 +1,6 @@
 // The final model's law channel at a finer step (identify.hpp, LawResolution).
 #include <cmath>
+#include <limits>
 
 #include "identify_internal.hpp"
 
@@ -51,6 +52,29 @@ LawResolution checkLawResolution(const Context& cx, const ExtendedModel& m, doub
     out.runs = std::move(runs);
     out.checked = true;
     return out;
+}
+
+double evalSSRefined(const Context& cx, const Spec& spec, const std::map<std::string, double>& vals,
+                     const std::vector<size_t>& idx, int refinement) {
+    if (spec.segments) return std::numeric_limits<double>::quiet_NaN();
+    double mass = std::numeric_limits<double>::quiet_NaN();
+    const ExtendedModel m = buildModel(cx, spec, vals, mass);
+    std::vector<double> ss(idx.size(), 0.0);
+    std::vector<char> ok(idx.size(), 0);
+    parallelFor(idx.size(), [&](size_t j) {
+        const Prepared& p = cx.runs[idx[j]];
+        LawRun law;
+        std::vector<double> r;
+        double n = 0;
+        ok[j] = simulateLawRun(cx, p, m, law, std::max(refinement, 1)) &&
+                runResiduals(cx, p, m, mass, r, ss[j], n, nullptr, nullptr, nullptr, false, &law);
+    });
+    double total = 0;
+    for (size_t j = 0; j < idx.size(); ++j) {
+        if (!ok[j]) return std::numeric_limits<double>::infinity();
+        total += ss[j];
+    }
+    return total;
 }
 
 }  // namespace stickslip::identify::detail

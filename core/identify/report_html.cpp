@@ -172,14 +172,20 @@ void writePerRun(std::ostream& o, const IdentifyResult& r) {
 // The effects added, with their parameters and the residual correlations that pointed to them.
 void writeEffectsAdded(std::ostream& o, const IdentifyResult& r) {
     o << "</table>\n<h3>Effects added</h3><table><tr><th>effect</th><th>parameter</th><th>value</th><th>std. error</th>"
-         "<th>&Delta;BIC</th><th>pointed to by (r before)</th></tr>\n";
+         "<th>&Delta;BIC</th><th>pointed to by (r before)</th><th>fit gain at the law's step / finer</th></tr>\n";
     for (const AddedEffect& e : r.effectsAdded) {
         std::string ptr;
         for (const auto& c : e.pointedBy) ptr += c.signal + " " + fmt(c.correlation, "%.3f") + "; ";
+        // The share of the fit's sum of squares the effect removes, at the fits' law step and with
+        // every law step split finer (AddedEffect::LawStepGain).
+        const std::string step = e.lawStep.checked() ? fmt(100.0 * e.lawStep.gain(), "%.1f") + " % / " +
+                                                           fmt(100.0 * e.lawStep.gainRefined(), "%.1f") + " % (&times;" +
+                                                           std::to_string(e.lawStep.refinement) + ")"
+                                                     : "&ndash;";
         for (const ParamEstimate& p : e.params)
             o << "<tr><td class=l>" << htmlEscape(e.name) << "</td><td class=l>" << htmlEscape(p.name) << "</td><td>" << fmt(p.value)
               << "</td><td>" << fmt(p.stderr_) << "</td><td>" << fmt(e.deltaBic, "%.1f") << "</td><td class=l>" << htmlEscape(ptr)
-              << "</td></tr>\n";
+              << "</td><td>" << step << "</td></tr>\n";
     }
 }
 

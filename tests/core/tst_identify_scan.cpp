@@ -158,6 +158,27 @@ private slots:
         QCOMPARE(scannedStart(fx.cx, spec, "frictional_lag", fx.start, fx.idx, &worse), scanned);
         QCOMPARE(scannedStart(fx.cx, spec, "frictional_lag", fx.start, fx.idx, &scanned), scanned);
     }
+
+    // evalSSRefined (law_resolution.cpp), the sum behind an added effect's law-step check: at
+    // refinement 1 it is evalSS to the last bit; split finer, it is the same runs' sum with the
+    // law run at the finer step (here a stiff, stable contact: close to it, but not the same
+    // numbers); the segment residual has no law channel of its own (NaN).
+    void refinedSumIsEvalSSAtRefinementOne() {
+        Fixture fx;
+        std::string why;
+        QVERIFY2(fx.make(synth::trueModel(), why), why.c_str());
+        const Spec spec;
+        const double ss = evalSS(fx.cx, spec, fx.start, fx.idx);
+        QVERIFY(std::isfinite(ss) && ss > 0);
+        QCOMPARE(evalSSRefined(fx.cx, spec, fx.start, fx.idx, 1), ss);
+        QCOMPARE(evalSSRefined(fx.cx, spec, fx.start, fx.idx, 0), ss);
+        const double fine = evalSSRefined(fx.cx, spec, fx.start, fx.idx, kLawResolutionRefinement);
+        QVERIFY2(std::isfinite(fine) && fine != ss && std::abs(fine - ss) < 0.5 * ss,
+                 qPrintable(QString("%1 vs %2").arg(fine).arg(ss)));
+        Spec seg;
+        seg.segments = true;
+        QVERIFY(std::isnan(evalSSRefined(fx.cx, seg, fx.start, fx.idx, kLawResolutionRefinement)));
+    }
 };
 
 QTEST_APPLESS_MAIN(TestIdentifyScan)

@@ -341,6 +341,22 @@ private slots:
         QVERIFY(has(page, "<tr><td class=l>round 1: &lt;lag&gt;</td><td>4.6</td><td>7.7</td><td>7</td></tr>"));
     }
 
+    // An added effect's law-step check (AddedEffect::LawStepGain): the shares of the fit's sum
+    // of squares it removes at the law's step and at the finer one, in its rows of the table and
+    // in the JSON; a dash and no JSON key when unchecked (the handmade result's default).
+    void lawStepGainIsShownWhereChecked() {
+        IdentifyResult r = handMadeResult();
+        QVERIFY(has(renderHtmlReport(r), "<td class=l>dF/dt 0.612; </td><td>&ndash;</td></tr>"));
+        QVERIFY(!toJson(r)["effects_added"][0].contains("law_step_check"));
+        r.effectsAdded[0].lawStep = {8, 10.0, 8.0, 9.0, 8.55};
+        QVERIFY(has(renderHtmlReport(r), "<td class=l>dF/dt 0.612; </td><td>20.0 % / 5.0 % (&times;8)</td></tr>"));
+        const nlohmann::json j = toJson(r)["effects_added"][0]["law_step_check"];
+        QCOMPARE(j["refinement"].get<int>(), 8);
+        QCOMPARE(j["gain"].get<double>(), 0.2);
+        QVERIFY(std::abs(j["gain_refined"].get<double>() - 0.05) < 1e-12);
+        QCOMPARE(j["fit_ss_after_refined"].get<double>(), 8.55);
+    }
+
     // An unresolved law channel (LawResolution) is its own warning when the residual is otherwise
     // white, with the same words as the JSON's and the CLI's lawResolutionText; nothing when resolved.
     void pageWarnsOfAnUnresolvedLawChannel() {
