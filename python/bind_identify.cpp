@@ -105,7 +105,7 @@ Setters<IdentifyRequest> identifySetters() {
         o("substeps", &IdentifyOptions::substeps), o("multistarts", &IdentifyOptions::multistarts),
         o("max_segments", &IdentifyOptions::maxSegmentsPerRun), o("seed", &IdentifyOptions::seed),
         o("confounded_vif", &IdentifyOptions::confoundedVif), o("held_out_restart", &IdentifyOptions::heldOutRestart),
-        o("forward_jacobian", &IdentifyOptions::forwardJacobian), o("analytic_jacobian", &IdentifyOptions::analyticJacobian), o("line_search_steps", &IdentifyOptions::lineSearchSteps), o("curve_coordinates", &IdentifyOptions::curveCoordinates),
+        o("forward_jacobian", &IdentifyOptions::forwardJacobian), o("analytic_jacobian", &IdentifyOptions::analyticJacobian), o("line_search_steps", &IdentifyOptions::lineSearchSteps), o("loo_function_tolerance", &IdentifyOptions::looFunctionTolerance), o("curve_coordinates", &IdentifyOptions::curveCoordinates),
         o("exact_state_step", &IdentifyOptions::exactStateStep), o("recorded_step_slip", &IdentifyOptions::recordedStepSlip),
         fn<R>("self_test", [](R& r, py::handle v) { r.selfTest = v.cast<bool>(); }),
         fn<R>("self_test_replicas", [](R& r, py::handle v) { r.selfTestReplicas = v.cast<int>(); }),

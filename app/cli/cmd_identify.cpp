@@ -88,6 +88,10 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
               << "\nunexplained structure: " << (res.unexplained ? "yes" : "no") << "\nwall time " << res.wallTime_s
               << " s, " << res.fits << " fits\n";
     if (const std::string t = lawResolutionText(res.lawResolution); !t.empty()) std::cout << "warning: " << t << "\n";
+    for (const auto& [label, e] : {std::pair{"before", &res.before}, std::pair{"after", &res.after}})
+        if (e->unmovedRefits > 0)
+            std::cout << "warning: " << label << ": " << e->unmovedRefits << " leave-one-run-out refit(s) stopped at the full fit, "
+                      << "so those runs' held-out errors are in-sample (--loo-function-tolerance)\n";
     for (const BoundVerdict& b : res.baselineBounds)
         std::cout << "baseline " << b.name << " ended on its " << b.side << " bound " << b.bound << ": "
                   << b.verdict() << " (a second start from " << b.retryStart << " ended at " << b.retryValue
@@ -181,6 +185,10 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--line-search-steps", o->req.options.lineSearchSteps,
                     "the fits' projected line search: at most this many step contractions per trust-region step "
                     "(Ceres' default 20; a rejected step spends them all)")->capture_default_str();
+    cmd->add_option("--loo-function-tolerance", o->req.options.looFunctionTolerance,
+                    "the leave-one-run-out refits' relative cost tolerance; at the default a refit may stop at the full fit "
+                    "(the report counts them: held_out_refits_unmoved), a smaller one lets it move at more cost")
+        ->capture_default_str();
     cmd->add_flag("--sensitivity-jacobian", o->req.options.analyticJacobian,
                   "the solver's Jacobian while it iterates from forward sensitivities carried through the return map "
                   "(one law run per run instead of one per parameter; not the segment residual); not yet the default");

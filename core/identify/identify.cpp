@@ -356,6 +356,7 @@ void describeSetup(const Context& cx, const IdentifyOptions& opt, int decimation
         if (p.run->setup == SetupKind::Dynamics) res.edgeGuard = std::max(res.edgeGuard, static_cast<int>(p.edgeGuard));
     res.jacobian = opt.analyticJacobian ? "sensitivities" : opt.forwardJacobian ? "forward" : "central";
     res.lineSearchSteps = opt.lineSearchSteps;
+    res.looFunctionTolerance = opt.looFunctionTolerance;
     res.stateStep = opt.exactStateStep ? "constant_rate" : "backward_euler";
     // What the runs were prepared with (prepareContext decides per run), not a second rule.
     res.lawInput = std::any_of(cx.runs.begin(), cx.runs.end(), [](const Prepared& p) { return !p.stepSlip.empty(); })

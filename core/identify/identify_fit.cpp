@@ -290,7 +290,8 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
     // start next to their optimum: 20 iterations. The cost tolerance 1e-6 is far below what the
     // selection resolves (the noise null's quantile is ~1e-4 of the cost on the synthetic sets).
     prob.maxIterations = scanStiffness ? 40 : 20;
-    prob.functionTolerance = 1e-6;
+    // A leave-one-run-out refit's cost changes by ~1e-7 of itself (IdentifyOptions::looFunctionTolerance).
+    prob.functionTolerance = from == FitStart::NearOptimum ? cx.opt->looFunctionTolerance : 1e-6;
     prob.parameterTolerance = 1e-6;
     prob.maxLineSearchSteps = cx.opt->lineSearchSteps;
     prob.jacobian = cx.opt->forwardJacobian && from == FitStart::Far ? JacobianKind::Forward : JacobianKind::Central;
@@ -398,7 +399,7 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
         // Leave one run out in turn, warm-started from the full fit. The refits are independent:
         // one per core (parallelFor), each writing its own slot, gathered in run order below.
         struct Refit {
-            bool fitted = false, predicted = false;
+            bool fitted = false, predicted = false, unmoved = false;
             std::map<std::string, double> values;
             double ss = 0, n = 0;
             long fits = 0;
@@ -414,6 +415,7 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
                                    FitOutput::ValuesOnly);
             if (!f.ok) return;
             o.fitted = true;
+            o.unmoved = f.values == full.values;
             o.values = std::move(f.values);
             double mh = kNaN;
             const ExtendedModel mo = buildModel(cx, spec, o.values, mh);
@@ -424,6 +426,7 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
             const Refit& o = refits[k];
             fits += o.fits;
             if (!o.fitted) continue;
+            me.unmovedRefits += o.unmoved ? 1 : 0;
             if (loo) loo->push_back(o.values);
             if (!o.predicted) continue;
             me.runs[fitIdx[k]].heldOutNrmse = o.n > 0 ? std::sqrt(o.ss / o.n) : 0.0;

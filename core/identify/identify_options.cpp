@@ -19,6 +19,8 @@ ParamIssues IdentifyOptions::validate() const {
     range("max_effects", maxEffects, maxEffects >= 0, ">= 0");
     range("multistarts", multistarts, multistarts >= 1, ">= 1");
     range("line_search_steps", lineSearchSteps, lineSearchSteps >= 1, ">= 1");
+    range("loo_function_tolerance", looFunctionTolerance, looFunctionTolerance > 0 && looFunctionTolerance <= 1e-2,
+          "in (0, 0.01]");
     range("confounded_vif", confoundedVif, confoundedVif > 1.0, "> 1");
     range("bic_margin", bicMargin, bicMargin >= 0, ">= 0");
     range("restart_margin", restartMargin, restartMargin >= 0, ">= 0");

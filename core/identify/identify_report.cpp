@@ -24,7 +24,8 @@ nlohmann::json toJson(const ModelErrors& e) {
     for (const RunError& r : e.runs)
         runs.push_back({{"file", r.file}, {"role", r.role}, {"rms_N", num(r.rms_N)}, {"nrmse", num(r.nrmse)},
                         {"held_out_nrmse", num(r.heldOutNrmse)}});
-    return {{"fit_nrmse", num(e.fitNrmse)}, {"validation_nrmse", num(e.validationNrmse)}, {"runs", runs}};
+    return {{"fit_nrmse", num(e.fitNrmse)}, {"validation_nrmse", num(e.validationNrmse)}, {"runs", runs},
+            {"held_out_refits_unmoved", e.unmovedRefits}};
 }
 
 }  // namespace
@@ -194,7 +195,8 @@ nlohmann::json selectionJson(const IdentifyResult& r) {
                       {"held_out_alpha", num(r.heldOutAlpha)}, {"held_out_mid_p", r.heldOutMidP}, {"min_held_out_gain", num(r.minHeldOutGain)}, {"identifiability_alpha", num(r.identifiabilityAlpha)},
                       {"tau_int_samples", num(r.tauInt)},
                       {"slip_episodes", r.slipEpisodes}, {"decimation", r.decimation}, {"law_channel_edge_guard_samples", r.edgeGuard}, {"jacobian", r.jacobian},
-                      {"line_search_steps", r.lineSearchSteps}, {"coordinates", r.coordinates},
+                      {"line_search_steps", r.lineSearchSteps}, {"loo_function_tolerance", num(r.looFunctionTolerance)},
+                      {"coordinates", r.coordinates},
                       {"state_step", r.stateStep}, {"law_input", r.lawInput},
                       {"residual", r.residual}, {"segments", r.segmentsUsed}};
 }

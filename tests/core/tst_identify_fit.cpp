@@ -167,6 +167,31 @@ private slots:
         QCOMPARE(one.runs.size(), spread.runs.size());
         for (size_t i = 0; i < one.runs.size(); ++i) QVERIFY(one.runs[i].heldOutNrmse == spread.runs[i].heldOutNrmse);
     }
+
+    // ModelErrors::unmovedRefits counts the refits that ended at the full fit, and those are
+    // exactly the runs whose held-out error is their in-sample one. With a tolerance far below the
+    // ~1e-7 relative change a left-out run makes, every refit moves: held-out differs from
+    // in-sample on every run and is, pooled, above it.
+    void unmovedRefitsAreCountedAndATighterToleranceMovesThem() {
+        for (double tol : {1e-6, 1e-12}) {
+            PreparedRuns p;
+            QVERIFY2(p.ok, p.why.c_str());
+            QVERIFY(p.cx.opt == &p.opt);
+            p.opt.looFunctionTolerance = tol;
+            const std::vector<size_t> idx = {0, 1, 2, 3};
+            long fits = 0;
+            const FitOutcome f = fitSpec(p.cx, Spec{}, baselineStart(p.cx, idx), idx, 1, fits, true);
+            QVERIFY2(f.ok, f.message.c_str());
+            const ModelErrors e = errorsOf(p.cx, Spec{}, f, idx, {}, fits);
+            int same = 0;
+            for (const RunError& r : e.runs) same += r.heldOutNrmse == r.nrmse ? 1 : 0;
+            QCOMPARE(e.unmovedRefits, same);
+            if (tol < 1e-10) {
+                QCOMPARE(e.unmovedRefits, 0);
+                QVERIFY2(e.validationNrmse > e.fitNrmse, qPrintable(QString("%1 vs %2").arg(e.validationNrmse).arg(e.fitNrmse)));
+            }
+        }
+    }
 };
 
 QTEST_APPLESS_MAIN(TestIdentifyFit)

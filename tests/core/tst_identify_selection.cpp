@@ -379,13 +379,15 @@ private slots:
         o.minHeldOutGain = 1.0;
         o.multistarts = 0;
         o.lineSearchSteps = 0;
+        o.looFunctionTolerance = 0.0;
         o.selfTest.replicas = -3;
         const ParamIssues bad = o.validate();
-        QCOMPARE(bad.size(), size_t(7));
+        QCOMPARE(bad.size(), size_t(8));
         const std::string all = formatIssues(bad);
         for (const char* s : {"confounded_vif = 1 is out of range: must be > 1", "null_alpha = 0 is out of range: must be in (0, 1)",
                               "held_out_alpha = 1.5", "min_held_out_gain = 1 is out of range: must be in [0, 1)", "multistarts = 0 is out of range: must be >= 1",
-                              "line_search_steps = 0 is out of range: must be >= 1", "replicas = -3"})
+                              "line_search_steps = 0 is out of range: must be >= 1", "replicas = -3",
+                              "loo_function_tolerance = 0 is out of range: must be in (0, 0.01]"})
             QVERIFY2(all.find(s) != std::string::npos, qPrintable(QString::fromStdString(all)));
     }
     void lawParametersAreTheContactOnes() {
