@@ -288,9 +288,10 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
     prob.cancel = cx.opt->cancel;
     // Warm-started refits (a candidate on top of the current model, a leave-one-run-out fit)
     // start next to their optimum: 20 iterations. The cost tolerance 1e-6 is far below what the
-    // selection resolves (the noise null's quantile is ~1e-4 of the cost on the synthetic sets).
+    // selection resolves in a fit's cost (the noise null's quantile is ~1e-4 of it on the
+    // synthetic sets), but not below what a left-out run changes (~1e-7 of it): a leave-one-run-out
+    // refit may stop before its first step (IdentifyOptions::looFunctionTolerance).
     prob.maxIterations = scanStiffness ? 40 : 20;
-    // A leave-one-run-out refit's cost changes by ~1e-7 of itself (IdentifyOptions::looFunctionTolerance).
     prob.functionTolerance = from == FitStart::NearOptimum ? cx.opt->looFunctionTolerance : 1e-6;
     prob.parameterTolerance = 1e-6;
     prob.maxLineSearchSteps = cx.opt->lineSearchSteps;
