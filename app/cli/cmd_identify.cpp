@@ -91,7 +91,8 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
     for (const auto& [label, e] : {std::pair{"before", &res.before}, std::pair{"after", &res.after}})
         if (e->unmovedRefits > 0)
             std::cout << "warning: " << label << ": " << e->unmovedRefits << " leave-one-run-out refit(s) stopped at the full fit, "
-                      << "so those runs' held-out errors are in-sample (--loo-function-tolerance)\n";
+                      << "also when done again at a relative cost tolerance of " << kLooRetryTolerance
+                      << ", so those runs' held-out errors are in-sample\n";
     for (const BoundVerdict& b : res.baselineBounds)
         std::cout << "baseline " << b.name << " ended on its " << b.side << " bound " << b.bound << ": "
                   << b.verdict() << " (a second start from " << b.retryStart << " ended at " << b.retryValue
@@ -99,9 +100,7 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
                   << (b.leftLater() ? "; the baseline adopted later has it at " + std::to_string(b.leftLaterTo) : std::string())
                   << ")\n";
     for (const auto& e : res.effectsAdded)
-        if (e.lawStep.checked())
-            std::cout << e.name << ": removes " << 100.0 * e.lawStep.gain() << " % of the fit's sum of squares at the law's step, "
-                      << 100.0 * e.lawStep.gainRefined() << " % with every law step split in " << e.lawStep.refinement << "\n";
+        if (const std::string t = lawStepText(e); !t.empty()) std::cout << e.name << ": " << t << "\n";
     for (const auto& e : res.effectsAdded)
         for (const std::string& c : e.confoundedWith)
             std::cout << "confounded: " << c << " trades off with " << e.name << " (not added; " << e.name
@@ -186,8 +185,8 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
                     "the fits' projected line search: at most this many step contractions per trust-region step "
                     "(Ceres' default 20; a rejected step spends them all)")->capture_default_str();
     cmd->add_option("--loo-function-tolerance", o->req.options.looFunctionTolerance,
-                    "the leave-one-run-out refits' relative cost tolerance; at the default a refit may stop at the full fit "
-                    "(the report counts them: held_out_refits_unmoved), a smaller one lets it move at more cost")
+                    "the leave-one-run-out refits' relative cost tolerance; a refit that stops at the full fit is done "
+                    "again at 1e-12 (the report counts them: held_out_refits_retried, _unmoved)")
         ->capture_default_str();
     cmd->add_flag("--sensitivity-jacobian", o->req.options.analyticJacobian,
                   "the solver's Jacobian while it iterates from forward sensitivities carried through the return map "

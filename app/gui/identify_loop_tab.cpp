@@ -241,13 +241,8 @@ void IdentifyLoopTab::showEffects(const IdentifyResult& r) {
         setCell(effects_, row, 0, QString::fromStdString(e.name), why.isEmpty() ? QString() : tr("pointed to by ") + why.join(", "));
         setCell(effects_, row, 1, QString::number(e.deltaBic, 'f', 1));
         // The law-step check (AddedEffect::LawStepGain) as the held-out cell's tooltip.
-        const QString step = e.lawStep.checked()
-                                 ? tr("removes %1 % of the fit's sum of squares at the law's step, %2 % with every law step split in %3")
-                                       .arg(100.0 * e.lawStep.gain(), 0, 'f', 1)
-                                       .arg(100.0 * e.lawStep.gainRefined(), 0, 'f', 1)
-                                       .arg(e.lawStep.refinement)
-                                 : QString();
-        setCell(effects_, row, 2, QStringLiteral("%1 → %2").arg(formatNrmse(e.heldOutBefore), formatNrmse(e.heldOutAfter)), step);
+        setCell(effects_, row, 2, QStringLiteral("%1 → %2").arg(formatNrmse(e.heldOutBefore), formatNrmse(e.heldOutAfter)),
+                QString::fromStdString(lawStepText(e)));
         setCell(effects_, row, 3, ps.join("; "), ps.join("\n"));
         effects_->item(row, 3)->setTextAlignment(Qt::AlignLeft | Qt::AlignVCenter);
     }

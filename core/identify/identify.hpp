@@ -91,6 +91,11 @@ std::function<bool(const io::Run&, IdentifyRun&, std::string&)> recordingPrepare
 //    a baseline refitted with Segments. Opt-in: on D05 (no effect) it added a backlash.
 enum class DynamicsResidual { EquationError, Segments, Auto };
 
+// The relative cost tolerance at which a leave-one-run-out refit that never left its start is
+// done again (IdentifyOptions::looFunctionTolerance): below the 2e-8 to 6e-7 of the cost by which
+// the first steps of such refits lower it (D11's baseline, session 62).
+inline constexpr double kLooRetryTolerance = 1e-12;
+
 struct IdentifyOptions {
     RateStateParams start;                                        // starting law values (μ, η, …, ε_T fixed unless free)
     std::vector<std::string> freeLaw = {"mu", "C1", "eta", "Dc", "vc", "epsT"}; // baseline free law parameters
@@ -253,8 +258,9 @@ struct IdentifyOptions {
     // it on D11's baseline) and Ceres stops without taking it: the refit ends at the full fit, and
     // the run's "held-out" error is its in-sample one (ModelErrors::unmovedRefits counts them). A
     // smaller tolerance lets the refits move (D18's final model: held-out 0.0368, its in-sample
-    // value, becomes 0.0388) at about 1.5–3× the loop's time; not yet the default until judged on
-    // every set (docs/identify-results.md, session 62).
+    // value, becomes 0.0388) at about 1.5–3× the loop's time if every refit takes it
+    // (docs/identify-results.md, session 62), so only a leave-one-run-out refit that never left
+    // its start is done again, at kLooRetryTolerance (ModelErrors::retriedRefits).
     double looFunctionTolerance = 1e-6;
     // Both set-ups: every fit that starts from a fitted model (leave-one-run-out refits,
     // candidates, restarts) with C1 and η inside their bounds (and κ, s inside theirs) moves in
@@ -302,8 +308,11 @@ struct ModelErrors {
     double fitNrmse = 0;         // pooled over the fit runs, fitted on all of them
     double validationNrmse = 0;  // pooled over held-out predictions
     std::vector<RunError> runs;
-    // Leave-one-run-out refits that ended exactly where they started (the full fit's values): for
-    // those runs the held-out error is the in-sample one (IdentifyOptions::looFunctionTolerance).
+    // Leave-one-run-out refits that never left their start (the full fit's values) at
+    // IdentifyOptions::looFunctionTolerance and were done again at kLooRetryTolerance...
+    int retriedRefits = 0;
+    // ...and those that did not leave it then either: for those runs the held-out error is the
+    // in-sample one.
     int unmovedRefits = 0;
 };
 
@@ -522,5 +531,8 @@ std::string verdictOf(const CandidateScore& c);
 // What the report says of an unresolved law channel (the runs whose prediction changes by more
 // than their noise level, and what to do); empty when resolved or not checked.
 std::string lawResolutionText(const LawResolution& r);
+// An added effect's law-step check as the reports say it ("removes 28.3 % of the fit's sum of
+// squares at the law's step, 18.8 % with every law step split in 8"); empty when not checked.
+std::string lawStepText(const AddedEffect& e);
 
 }  // namespace stickslip::identify

@@ -267,7 +267,7 @@ static FitOutcome outcomeOf(const Context& cx, const Spec& spec, const std::vect
 // is set to whether it did.
 static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                             const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
-                            FitOutput output, bool curveAllowed, bool& usedCurve) {
+                            FitOutput output, double functionTolerance, bool curveAllowed, bool& usedCurve) {
     FitProblem prob;
     prob.parameters = parameters(cx, spec, start);
     // Baseline: scans of ε_T and D_c first (stiffnessScans).
@@ -292,7 +292,9 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
     // synthetic sets), but not below what a left-out run changes (~1e-7 of it): a leave-one-run-out
     // refit may stop before its first step (IdentifyOptions::looFunctionTolerance).
     prob.maxIterations = scanStiffness ? 40 : 20;
-    prob.functionTolerance = from == FitStart::NearOptimum ? cx.opt->looFunctionTolerance : 1e-6;
+    prob.functionTolerance = functionTolerance > 0 ? functionTolerance
+                             : from == FitStart::NearOptimum ? cx.opt->looFunctionTolerance
+                                                             : 1e-6;
     prob.parameterTolerance = 1e-6;
     prob.maxLineSearchSteps = cx.opt->lineSearchSteps;
     prob.jacobian = cx.opt->forwardJacobian && from == FitStart::Far ? JacobianKind::Forward : JacobianKind::Central;
@@ -338,10 +340,10 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
 
 FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                    const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
-                   FitOutput output) {
+                   FitOutput output, double functionTolerance) {
     bool usedCurve = false;
-    FitOutcome out = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, cx.opt->curveCoordinates,
-                               usedCurve);
+    FitOutcome out = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, functionTolerance,
+                               cx.opt->curveCoordinates, usedCurve);
     // A fit in the curve coordinates that fails (its optimum in a corner where a box bound of
     // v_c meets a bound of C1 or η, which is not a box bound there: no side of a difference can
     // be evaluated; the damper's 30 lb runs, backlash) is done again in C1, η, v_c from the
@@ -353,14 +355,16 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
     // left its start without asking for a point outside those bounds started at a stationary
     // point, where C1, η, v_c find the same (session 51: 15 such refits on D13 and D05, every
     // one at the same sum of squares).
-    const bool stalled = out.ok && !(out.fit.cost < out.fit.initialCost * (1.0 - 1e-12));
-    const bool metTheEdge = stalled && out.outsideLawBounds > 0;
+    const bool metTheEdge = neverMoved(out) && out.outsideLawBounds > 0;
     if ((!out.ok || metTheEdge) && usedCurve && !(cx.opt->cancel && cx.opt->cancel->load())) {
-        FitOutcome law = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, false, usedCurve);
+        FitOutcome law = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, functionTolerance,
+                                   false, usedCurve);
         if (law.ok && (!out.ok || law.ss < out.ss)) return law;
     }
     return out;
 }
+
+bool neverMoved(const FitOutcome& f) { return f.ok && !(f.fit.cost < f.fit.initialCost * (1.0 - 1e-12)); }
 
 // Per-run errors of a fitted model: in-sample for the fit runs, prediction for validation
 // runs; held-out errors by leave-one-run-out (fit runs) when there are no validation runs.
@@ -400,7 +404,7 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
         // Leave one run out in turn, warm-started from the full fit. The refits are independent:
         // one per core (parallelFor), each writing its own slot, gathered in run order below.
         struct Refit {
-            bool fitted = false, predicted = false, unmoved = false;
+            bool fitted = false, predicted = false, retried = false, unmoved = false;
             std::map<std::string, double> values;
             double ss = 0, n = 0;
             long fits = 0;
@@ -414,9 +418,18 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
             Refit& o = refits[k];
             FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, o.fits, false, FitStart::NearOptimum,
                                    FitOutput::ValuesOnly);
+            // A refit that never left the full fit's optimum would make the run's held-out error
+            // its in-sample one: done again at a tolerance its first step meets.
+            if (neverMoved(f) && cx.opt->looFunctionTolerance > kLooRetryTolerance &&
+                !(cx.opt->cancel && cx.opt->cancel->load())) {
+                o.retried = true;
+                FitOutcome g = fitSpec(cx, spec, full.values, rest, 1, o.fits, false, FitStart::NearOptimum,
+                                       FitOutput::ValuesOnly, kLooRetryTolerance);
+                if (g.ok) f = std::move(g);
+            }
             if (!f.ok) return;
             o.fitted = true;
-            o.unmoved = f.values == full.values;
+            o.unmoved = neverMoved(f) || f.values == full.values;
             o.values = std::move(f.values);
             double mh = kNaN;
             const ExtendedModel mo = buildModel(cx, spec, o.values, mh);
@@ -427,6 +440,7 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
             const Refit& o = refits[k];
             fits += o.fits;
             if (!o.fitted) continue;
+            me.retriedRefits += o.retried ? 1 : 0;
             me.unmovedRefits += o.unmoved ? 1 : 0;
             if (loo) loo->push_back(o.values);
             if (!o.predicted) continue;

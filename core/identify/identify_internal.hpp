@@ -254,9 +254,14 @@ enum class FitStart { Far, NearOptimum };
 // solve and the re-evaluation over its runs are skipped; `values` and `ok` are the same as
 // Full's, `estimates` carry NaN standard errors, ss = NaN and count = 0.
 enum class FitOutput { Full, ValuesOnly };
+// `functionTolerance`: Ceres' relative cost tolerance; 0 takes the default for `from` (1e-6 from
+// far, IdentifyOptions::looFunctionTolerance near the optimum).
 FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                    const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness = false,
-                   FitStart from = FitStart::Far, FitOutput output = FitOutput::Full);
+                   FitStart from = FitStart::Far, FitOutput output = FitOutput::Full, double functionTolerance = 0);
+// Whether a successful fit ended where it started: its cost not lowered by a relative 1e-12
+// (the solver took no step).
+bool neverMoved(const FitOutcome& f);
 // `loo`, if given, is replaced by the leave-one-run-out refits' parameter values (one per run).
 ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
                      const std::vector<size_t>& valIdx, long& fits,

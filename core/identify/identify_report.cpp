@@ -25,7 +25,7 @@ nlohmann::json toJson(const ModelErrors& e) {
         runs.push_back({{"file", r.file}, {"role", r.role}, {"rms_N", num(r.rms_N)}, {"nrmse", num(r.nrmse)},
                         {"held_out_nrmse", num(r.heldOutNrmse)}});
     return {{"fit_nrmse", num(e.fitNrmse)}, {"validation_nrmse", num(e.validationNrmse)}, {"runs", runs},
-            {"held_out_refits_unmoved", e.unmovedRefits}};
+            {"held_out_refits_retried", e.retriedRefits}, {"held_out_refits_unmoved", e.unmovedRefits}};
 }
 
 }  // namespace
@@ -267,6 +267,15 @@ std::string lawResolutionText(const LawResolution& r) {
            "term and its stiffness can hold is unstable under its own law and oscillates at a rate the step sets); "
            "run again with more law steps (stickslip-cli identify --substeps N, or --decimate 1) and see whether the "
            "fit and the structure stay";
+}
+
+std::string lawStepText(const AddedEffect& e) {
+    if (!e.lawStep.checked()) return {};
+    char b[160];
+    std::snprintf(b, sizeof b,
+                  "removes %.1f %% of the fit's sum of squares at the law's step, %.1f %% with every law step split in %d",
+                  100.0 * e.lawStep.gain(), 100.0 * e.lawStep.gainRefined(), e.lawStep.refinement);
+    return b;
 }
 
 std::string verdictOf(const CandidateScore& c) {

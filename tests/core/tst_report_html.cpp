@@ -343,12 +343,16 @@ private slots:
 
     // An added effect's law-step check (AddedEffect::LawStepGain): the shares of the fit's sum
     // of squares it removes at the law's step and at the finer one, in its rows of the table and
-    // in the JSON; a dash and no JSON key when unchecked (the handmade result's default).
+    // in the JSON, and the sentence the CLI and the Identify panel show (lawStepText); a dash, no
+    // JSON key and no sentence when unchecked (the handmade result's default).
     void lawStepGainIsShownWhereChecked() {
         IdentifyResult r = handMadeResult();
         QVERIFY(has(renderHtmlReport(r), "<td class=l>dF/dt 0.612; </td><td>&ndash;</td></tr>"));
         QVERIFY(!toJson(r)["effects_added"][0].contains("law_step_check"));
+        QVERIFY(lawStepText(r.effectsAdded[0]).empty());
         r.effectsAdded[0].lawStep = {8, 10.0, 8.0, 9.0, 8.55};
+        QCOMPARE(lawStepText(r.effectsAdded[0]),
+                 std::string("removes 20.0 % of the fit's sum of squares at the law's step, 5.0 % with every law step split in 8"));
         QVERIFY(has(renderHtmlReport(r), "<td class=l>dF/dt 0.612; </td><td>20.0 % / 5.0 % (&times;8)</td></tr>"));
         const nlohmann::json j = toJson(r)["effects_added"][0]["law_step_check"];
         QCOMPARE(j["refinement"].get<int>(), 8);
