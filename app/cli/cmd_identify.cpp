@@ -90,9 +90,9 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
     if (const std::string t = lawResolutionText(res.lawResolution); !t.empty()) std::cout << "warning: " << t << "\n";
     for (const auto& [label, e] : {std::pair{"before", &res.before}, std::pair{"after", &res.after}})
         if (e->unmovedRefits > 0)
-            std::cout << "warning: " << label << ": " << e->unmovedRefits << " leave-one-run-out refit(s) stopped at the full fit, "
-                      << "also when done again at a relative cost tolerance of " << kLooRetryTolerance
-                      << ", so those runs' held-out errors are in-sample\n";
+            std::cout << "warning: " << label << ": on " << e->unmovedRefits << " run(s) the held-out error is the in-sample one "
+                      << "(within " << kUnmovedRelative << " of it): the refit without the run did not move off the full fit, "
+                      << "also where done again at tolerances of " << kLooRetryTolerance << "\n";
     for (const BoundVerdict& b : res.baselineBounds)
         std::cout << "baseline " << b.name << " ended on its " << b.side << " bound " << b.bound << ": "
                   << b.verdict() << " (a second start from " << b.retryStart << " ended at " << b.retryValue

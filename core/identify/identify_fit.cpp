@@ -267,7 +267,7 @@ static FitOutcome outcomeOf(const Context& cx, const Spec& spec, const std::vect
 // is set to whether it did.
 static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                             const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
-                            FitOutput output, double functionTolerance, bool curveAllowed, bool& usedCurve) {
+                            FitOutput output, double retryTolerance, bool curveAllowed, bool& usedCurve) {
     FitProblem prob;
     prob.parameters = parameters(cx, spec, start);
     // Baseline: scans of ε_T and D_c first (stiffnessScans).
@@ -292,10 +292,10 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
     // synthetic sets), but not below what a left-out run changes (~1e-7 of it): a leave-one-run-out
     // refit may stop before its first step (IdentifyOptions::looFunctionTolerance).
     prob.maxIterations = scanStiffness ? 40 : 20;
-    prob.functionTolerance = functionTolerance > 0 ? functionTolerance
+    prob.functionTolerance = retryTolerance > 0 ? retryTolerance
                              : from == FitStart::NearOptimum ? cx.opt->looFunctionTolerance
                                                              : 1e-6;
-    prob.parameterTolerance = 1e-6;
+    prob.parameterTolerance = retryTolerance > 0 ? retryTolerance : 1e-6;
     prob.maxLineSearchSteps = cx.opt->lineSearchSteps;
     prob.jacobian = cx.opt->forwardJacobian && from == FitStart::Far ? JacobianKind::Forward : JacobianKind::Central;
     prob.uncertainty = output == FitOutput::Full;
@@ -340,9 +340,9 @@ static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<
 
 FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                    const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
-                   FitOutput output, double functionTolerance) {
+                   FitOutput output, double retryTolerance) {
     bool usedCurve = false;
-    FitOutcome out = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, functionTolerance,
+    FitOutcome out = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, retryTolerance,
                                cx.opt->curveCoordinates, usedCurve);
     // A fit in the curve coordinates that fails (its optimum in a corner where a box bound of
     // v_c meets a bound of C1 or η, which is not a box bound there: no side of a difference can
@@ -357,7 +357,7 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
     // one at the same sum of squares).
     const bool metTheEdge = neverMoved(out) && out.outsideLawBounds > 0;
     if ((!out.ok || metTheEdge) && usedCurve && !(cx.opt->cancel && cx.opt->cancel->load())) {
-        FitOutcome law = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, functionTolerance,
+        FitOutcome law = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, retryTolerance,
                                    false, usedCurve);
         if (law.ok && (!out.ok || law.ss < out.ss)) return law;
     }
@@ -404,7 +404,7 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
         // Leave one run out in turn, warm-started from the full fit. The refits are independent:
         // one per core (parallelFor), each writing its own slot, gathered in run order below.
         struct Refit {
-            bool fitted = false, predicted = false, retried = false, unmoved = false;
+            bool fitted = false, predicted = false, retried = false;
             std::map<std::string, double> values;
             double ss = 0, n = 0;
             long fits = 0;
@@ -429,7 +429,6 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
             }
             if (!f.ok) return;
             o.fitted = true;
-            o.unmoved = neverMoved(f) || f.values == full.values;
             o.values = std::move(f.values);
             double mh = kNaN;
             const ExtendedModel mo = buildModel(cx, spec, o.values, mh);
@@ -441,10 +440,11 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
             fits += o.fits;
             if (!o.fitted) continue;
             me.retriedRefits += o.retried ? 1 : 0;
-            me.unmovedRefits += o.unmoved ? 1 : 0;
             if (loo) loo->push_back(o.values);
             if (!o.predicted) continue;
-            me.runs[fitIdx[k]].heldOutNrmse = o.n > 0 ? std::sqrt(o.ss / o.n) : 0.0;
+            RunError& re = me.runs[fitIdx[k]];
+            re.heldOutNrmse = o.n > 0 ? std::sqrt(o.ss / o.n) : 0.0;
+            me.unmovedRefits += std::abs(re.heldOutNrmse - re.nrmse) <= kUnmovedRelative * re.nrmse ? 1 : 0;
             valSS += o.ss; valN += o.n;
         }
     }

@@ -254,11 +254,12 @@ enum class FitStart { Far, NearOptimum };
 // solve and the re-evaluation over its runs are skipped; `values` and `ok` are the same as
 // Full's, `estimates` carry NaN standard errors, ss = NaN and count = 0.
 enum class FitOutput { Full, ValuesOnly };
-// `functionTolerance`: Ceres' relative cost tolerance; 0 takes the default for `from` (1e-6 from
-// far, IdentifyOptions::looFunctionTolerance near the optimum).
+// `retryTolerance` > 0: Ceres' relative cost and parameter tolerances both (a refit done again
+// because it never left its start); 0: the defaults, a cost tolerance of 1e-6 from far and
+// IdentifyOptions::looFunctionTolerance near the optimum, a parameter tolerance of 1e-6.
 FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                    const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness = false,
-                   FitStart from = FitStart::Far, FitOutput output = FitOutput::Full, double functionTolerance = 0);
+                   FitStart from = FitStart::Far, FitOutput output = FitOutput::Full, double retryTolerance = 0);
 // Whether a successful fit ended where it started: its cost not lowered by a relative 1e-12
 // (the solver took no step).
 bool neverMoved(const FitOutcome& f);
