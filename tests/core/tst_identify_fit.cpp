@@ -57,7 +57,7 @@ private slots:
             const long before = fits;
             FitOutcome g = fitSpec(cx, spec, f.values, idx, 1, fits);
             QVERIFY2(g.ok, g.message.c_str());
-            stalled = !(g.fit.cost < g.fit.initialCost * (1.0 - 1e-12));
+            stalled = neverMoved(g);
             qInfo("refit %d: ss %.9g -> %.9g, %ld fit(s), %ld outside the law's bounds, stalled %d", k, f.ss, g.ss,
                   fits - before, g.outsideLawBounds, int(stalled));
             if (stalled) {
