@@ -317,14 +317,9 @@ struct ModelErrors {
     // IdentifyOptions::looFunctionTolerance and were done again at kLooRetryTolerance.
     int retriedRefits = 0;
     // Runs whose held-out error is their in-sample one to a relative kUnmovedRelative: the refit
-    // without them barely moved off the full fit (session 63: on D18's final model five retried
-    // refits crawled along the edge of the curve coordinates' region, lowering the cost by ~1e-6
-    // of it; such refits are now continued in C1, η, v_c, lawPasses).
+    // without them did not move off the full fit (also where retried: on D18's final model all
+    // five retried refits crawl for 20 iterations and lower the cost by ~1e-6 of it, session 63).
     int unmovedRefits = 0;
-    // Fits of the leave-one-run-out refits done in C1, η, v_c after one in the steady-state
-    // curve's coordinates: a refit that failed there, or met the edge of their region (asked for
-    // points outside C1's or η's bounds) and was continued from where it stopped (errorsOf).
-    int lawPasses = 0;
 };
 
 struct CandidateScore {

@@ -263,7 +263,9 @@ static FitOutcome outcomeOf(const Context& cx, const Spec& spec, const std::vect
     return out;
 }
 
-FitOutcome fitSpecOnce(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
+// One fit (fitSpec); `curveAllowed`: whether it may move in the curve coordinates, `usedCurve`
+// is set to whether it did.
+static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                             const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
                             FitOutput output, double retryTolerance, bool curveAllowed, bool& usedCurve) {
     FitProblem prob;
@@ -340,20 +342,12 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
                    const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
                    FitOutput output, double retryTolerance) {
     bool usedCurve = false;
-    FitOutcome out = fitSpecOnce(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, retryTolerance,
+    FitOutcome out = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, retryTolerance,
                                cx.opt->curveCoordinates, usedCurve);
-    if (!usedCurve || cx.cancelled()) return out;
     // A fit in the curve coordinates that fails (its optimum in a corner where a box bound of
     // v_c meets a bound of C1 or η, which is not a box bound there: no side of a difference can
     // be evaluated; the damper's 30 lb runs, backlash) is done again in C1, η, v_c from the
     // same start, where such a corner is a box corner.
-    if (!out.ok) {
-        FitOutcome law = fitSpecOnce(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, retryTolerance,
-                                     false, usedCurve);
-        FitOutcome& kept = law.ok ? law : out;
-        kept.lawPasses = 1;
-        return kept;
-    }
     // So is one that never left its start next to such a corner: every difference step crosses
     // the bound and no step is taken (a synthesized set with a load effect, C1 1e-5 below its
     // bound: the baseline's refit and all nine candidates ended at the start, normal_load_mu
@@ -361,27 +355,13 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
     // left its start without asking for a point outside those bounds started at a stationary
     // point, where C1, η, v_c find the same (session 51: 15 such refits on D13 and D05, every
     // one at the same sum of squares).
-    if (neverMoved(out) && out.outsideLawBounds > 0) {
-        FitOutcome law = continueInLawCoordinates(cx, spec, out, idx, fits, from, output, retryTolerance);
-        FitOutcome& kept = lawFitIsBetter(out, law) ? law : out;
-        kept.lawPasses = 1;
-        return kept;
+    const bool metTheEdge = neverMoved(out) && out.outsideLawBounds > 0;
+    if ((!out.ok || metTheEdge) && usedCurve && !(cx.opt->cancel && cx.opt->cancel->load())) {
+        FitOutcome law = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, retryTolerance,
+                                   false, usedCurve);
+        if (law.ok && (!out.ok || law.ss < out.ss)) return law;
     }
     return out;
-}
-
-FitOutcome continueInLawCoordinates(const Context& cx, const Spec& spec, const FitOutcome& curveFit,
-                                    const std::vector<size_t>& idx, long& fits, FitStart from, FitOutput output,
-                                    double retryTolerance) {
-    bool usedCurve = false;
-    FitOutcome law = fitSpecOnce(cx, spec, curveFit.values, idx, 1, fits, false, from, output, retryTolerance, false,
-                                 usedCurve);
-    if (law.ok) law.fit.initialCost = curveFit.fit.initialCost;  // where the whole fit began, for neverMoved
-    return law;
-}
-
-bool lawFitIsBetter(const FitOutcome& curveFit, const FitOutcome& lawFit) {
-    return lawFit.ok && (!curveFit.ok || lawFit.fit.cost < curveFit.fit.cost);
 }
 
 bool neverMoved(const FitOutcome& f) { return f.ok && !(f.fit.cost < f.fit.initialCost * (1.0 - 1e-12)); }
@@ -425,45 +405,27 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
         // one per core (parallelFor), each writing its own slot, gathered in run order below.
         struct Refit {
             bool fitted = false, predicted = false, retried = false;
-            int lawPasses = 0;  // fits in C1, η, v_c after one in the curve coordinates
             std::map<std::string, double> values;
             double ss = 0, n = 0;
             long fits = 0;
         };
         std::vector<Refit> refits(fitIdx.size());
         parallelFor(fitIdx.size(), [&](size_t k) {
-            if (cx.cancelled()) return;
+            if (cx.opt->cancel && cx.opt->cancel->load()) return;
             const size_t h = fitIdx[k];
             std::vector<size_t> rest;
             for (size_t i : fitIdx) if (i != h) rest.push_back(i);
             Refit& o = refits[k];
             FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, o.fits, false, FitStart::NearOptimum,
                                    FitOutput::ValuesOnly);
-            o.lawPasses += f.lawPasses;
             // A refit that never left the full fit's optimum would make the run's held-out error
             // its in-sample one: done again at a tolerance its first step meets.
             if (neverMoved(f) && cx.opt->looFunctionTolerance > kLooRetryTolerance &&
-                !cx.cancelled()) {
+                !(cx.opt->cancel && cx.opt->cancel->load())) {
                 o.retried = true;
                 FitOutcome g = fitSpec(cx, spec, full.values, rest, 1, o.fits, false, FitStart::NearOptimum,
                                        FitOutput::ValuesOnly, kLooRetryTolerance);
-                o.lawPasses += g.lawPasses;
                 if (g.ok) f = std::move(g);
-            }
-            // A refit that asked for points outside C1's or η's bounds met the edge of the curve
-            // coordinates' region, which their box-bounded solver cannot follow: it crawls along
-            // it or stops there, near the full fit's point, and the run's held-out error leans
-            // to its in-sample one (D18's final model, C1 on its bound: refits asked for 189-256
-            // points outside and lowered the cost by ~1e-6 of it, where C1, η, v_c lower it by
-            // 0.8-7.5 %; docs/identify-results.md, sessions 63-64). It is continued in C1, η, v_c
-            // from where it stopped, where that edge is a box bound. Only here: continuing the
-            // full and candidate fits too moved a near tie on D04 (session 64), and those fits
-            // have their own guards (identify_restart.cpp).
-            if (f.ok && f.outsideLawBounds > 0 && !cx.cancelled()) {
-                ++o.lawPasses;
-                FitOutcome g = continueInLawCoordinates(cx, spec, f, rest, o.fits, FitStart::NearOptimum,
-                                                        FitOutput::ValuesOnly, o.retried ? kLooRetryTolerance : 0);
-                if (lawFitIsBetter(f, g)) f = std::move(g);
             }
             if (!f.ok) return;
             o.fitted = true;
@@ -476,7 +438,6 @@ ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full
         for (size_t k = 0; k < fitIdx.size(); ++k) {
             const Refit& o = refits[k];
             fits += o.fits;
-            me.lawPasses += o.lawPasses;
             if (!o.fitted) continue;
             me.retriedRefits += o.retried ? 1 : 0;
             if (loo) loo->push_back(o.values);

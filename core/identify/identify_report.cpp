@@ -25,8 +25,7 @@ nlohmann::json toJson(const ModelErrors& e) {
         runs.push_back({{"file", r.file}, {"role", r.role}, {"rms_N", num(r.rms_N)}, {"nrmse", num(r.nrmse)},
                         {"held_out_nrmse", num(r.heldOutNrmse)}});
     return {{"fit_nrmse", num(e.fitNrmse)}, {"validation_nrmse", num(e.validationNrmse)}, {"runs", runs},
-            {"held_out_refits_retried", e.retriedRefits}, {"held_out_refits_unmoved", e.unmovedRefits},
-            {"held_out_law_coordinate_passes", e.lawPasses}};
+            {"held_out_refits_retried", e.retriedRefits}, {"held_out_refits_unmoved", e.unmovedRefits}};
 }
 
 }  // namespace
