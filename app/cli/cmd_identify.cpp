@@ -90,9 +90,9 @@ void runIdentify(const IdentifyCliOptions& o, int& exitCode) {
     if (const std::string t = lawResolutionText(res.lawResolution); !t.empty()) std::cout << "warning: " << t << "\n";
     for (const auto& [label, e] : {std::pair{"before", &res.before}, std::pair{"after", &res.after}})
         if (e->unmovedRefits > 0)
-            std::cout << "warning: " << label << ": on " << e->unmovedRefits << " run(s) the held-out error is the in-sample one "
-                      << "(within " << kUnmovedRelative << " of it): the refit without the run did not move off the full fit, "
-                      << "also where done again at tolerances of " << kLooRetryTolerance << "\n";
+            std::cout << "warning: " << label << ": on " << e->unmovedRefits << " run(s) the held-out error is within "
+                      << kUnmovedRelative << " of the in-sample one: leaving the run out barely changed the fit (a refit "
+                      << "that took no step was done again at tolerances of " << kLooRetryTolerance << ")\n";
     for (const BoundVerdict& b : res.baselineBounds)
         std::cout << "baseline " << b.name << " ended on its " << b.side << " bound " << b.bound << ": "
                   << b.verdict() << " (a second start from " << b.retryStart << " ended at " << b.retryValue
@@ -186,7 +186,8 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
                     "(Ceres' default 20; a rejected step spends them all)")->capture_default_str();
     cmd->add_option("--loo-function-tolerance", o->req.options.looFunctionTolerance,
                     "the leave-one-run-out refits' relative cost tolerance; a refit that stops at the full fit is done "
-                    "again at 1e-12 (the report counts them: held_out_refits_retried, _unmoved)")
+                    "again at 1e-12, and one that meets the edge of the steady-state curve's coordinates is continued "
+                    "in C1, eta, v_c (the report counts them: held_out_refits_retried, held_out_law_coordinate_passes, held_out_refits_unmoved)")
         ->capture_default_str();
     cmd->add_flag("--sensitivity-jacobian", o->req.options.analyticJacobian,
                   "the solver's Jacobian while it iterates from forward sensitivities carried through the return map "

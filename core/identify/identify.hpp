@@ -317,9 +317,14 @@ struct ModelErrors {
     // IdentifyOptions::looFunctionTolerance and were done again at kLooRetryTolerance.
     int retriedRefits = 0;
     // Runs whose held-out error is their in-sample one to a relative kUnmovedRelative: the refit
-    // without them did not move off the full fit (also where retried: on D18's final model all
-    // five retried refits crawl for 20 iterations and lower the cost by ~1e-6 of it, session 63).
+    // without them barely moved off the full fit (session 63: on D18's final model five retried
+    // refits crawled along the edge of the curve coordinates' region, lowering the cost by ~1e-6
+    // of it; such refits are now continued in C1, η, v_c, lawPasses).
     int unmovedRefits = 0;
+    // Fits of the leave-one-run-out refits done in C1, η, v_c after one in the steady-state
+    // curve's coordinates: a refit that failed there, or met the edge of their region (asked for
+    // points outside C1's or η's bounds) and was continued from where it stopped (errorsOf).
+    int lawPasses = 0;
 };
 
 struct CandidateScore {
@@ -462,6 +467,17 @@ struct LawResolution {
     }
 };
 
+// The final model's polish (IdentifyOptions::heldOutRestart): once the verdicts are made, the
+// final model refitted from a lower point a last-round candidate fit found. The refit is kept
+// only if it does not predict the held-out runs worse than the model it would replace; a lower
+// in-sample minimum that predicts them worse fits these runs' noise, not the device.
+struct FinalPolish {
+    bool refitted = false;  // a lower point was found and the final model refitted from it
+    bool kept = false;      // the refit replaced the final model
+    double ssBefore = 0, ssRefit = 0;            // fit-run sums of squares
+    double heldOutBefore = 0, heldOutRefit = 0;  // held-out NRMSE (IdentifyResult::after's measure)
+};
+
 // One stage of the loop as its progress reported it (IdentifyOptions::progress): where the
 // wall time and the fits went (the report's "timeline").
 struct IdentifyStage {
@@ -490,6 +506,7 @@ struct IdentifyResult {
     bool unexplained = false;
     std::string unexplainedReason;
     LawResolution lawResolution;  // of the final model
+    FinalPolish polish;
     std::vector<RunTrace> traces;
     double wallTime_s = 0;
     long fits = 0;

@@ -1,5 +1,5 @@
-// Fitting a model of the loop (baseline or with candidates) on the prepared runs, its held-out errors
-// and the diagnostics of its residual.
+// Fitting a model of the loop (baseline or with candidates) on the prepared runs and the
+// diagnostics of its residual (its held-out errors: held_out_errors.cpp).
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -263,9 +263,7 @@ static FitOutcome outcomeOf(const Context& cx, const Spec& spec, const std::vect
     return out;
 }
 
-// One fit (fitSpec); `curveAllowed`: whether it may move in the curve coordinates, `usedCurve`
-// is set to whether it did.
-static FitOutcome fitSpecIn(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
+FitOutcome fitSpecOnce(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                             const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
                             FitOutput output, double retryTolerance, bool curveAllowed, bool& usedCurve) {
     FitProblem prob;
@@ -342,12 +340,20 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
                    const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
                    FitOutput output, double retryTolerance) {
     bool usedCurve = false;
-    FitOutcome out = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, retryTolerance,
+    FitOutcome out = fitSpecOnce(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, retryTolerance,
                                cx.opt->curveCoordinates, usedCurve);
+    if (!usedCurve || cx.cancelled()) return out;
     // A fit in the curve coordinates that fails (its optimum in a corner where a box bound of
     // v_c meets a bound of C1 or η, which is not a box bound there: no side of a difference can
     // be evaluated; the damper's 30 lb runs, backlash) is done again in C1, η, v_c from the
     // same start, where such a corner is a box corner.
+    if (!out.ok) {
+        FitOutcome law = fitSpecOnce(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, retryTolerance,
+                                     false, usedCurve);
+        FitOutcome& kept = law.ok ? law : out;
+        kept.lawPasses = 1;
+        return kept;
+    }
     // So is one that never left its start next to such a corner: every difference step crosses
     // the bound and no step is taken (a synthesized set with a load effect, C1 1e-5 below its
     // bound: the baseline's refit and all nine candidates ended at the start, normal_load_mu
@@ -355,102 +361,30 @@ FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::stri
     // left its start without asking for a point outside those bounds started at a stationary
     // point, where C1, η, v_c find the same (session 51: 15 such refits on D13 and D05, every
     // one at the same sum of squares).
-    const bool metTheEdge = neverMoved(out) && out.outsideLawBounds > 0;
-    if ((!out.ok || metTheEdge) && usedCurve && !(cx.opt->cancel && cx.opt->cancel->load())) {
-        FitOutcome law = fitSpecIn(cx, spec, start, idx, multistarts, fits, scanStiffness, from, output, retryTolerance,
-                                   false, usedCurve);
-        if (law.ok && (!out.ok || law.ss < out.ss)) return law;
+    if (neverMoved(out) && out.outsideLawBounds > 0) {
+        FitOutcome law = continueInLawCoordinates(cx, spec, out, idx, fits, from, output, retryTolerance);
+        FitOutcome& kept = lawFitIsBetter(out, law) ? law : out;
+        kept.lawPasses = 1;
+        return kept;
     }
     return out;
 }
 
-bool neverMoved(const FitOutcome& f) { return f.ok && !(f.fit.cost < f.fit.initialCost * (1.0 - 1e-12)); }
-
-// Per-run errors of a fitted model: in-sample for the fit runs, prediction for validation
-// runs; held-out errors by leave-one-run-out (fit runs) when there are no validation runs.
-// `loo` (optional): the parameter values of each leave-one-run-out fit (for the jackknife).
-ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
-                     const std::vector<size_t>& valIdx, long& fits,
-                     std::vector<std::map<std::string, double>>* loo) {
-    if (loo) loo->clear();  // this model's refits only (a caller may pass the vector of an earlier fit)
-    ModelErrors me;
-    double mass = kNaN;
-    const ExtendedModel m = buildModel(cx, spec, full.values, mass);
-    double fitSS = 0, fitN = 0, valSS = 0, valN = 0;
-    for (size_t i = 0; i < cx.runs.size(); ++i) {
-        const bool isVal = std::find(valIdx.begin(), valIdx.end(), i) != valIdx.end();
-        std::vector<double> r, fr;
-        std::vector<char> used;
-        double ss = 0, n = 0;
-        runResiduals(cx, cx.runs[i], m, mass, r, ss, n, nullptr, &used, &fr, spec.segments);
-        RunError e;
-        e.file = cx.runs[i].run->file;
-        e.role = isVal ? "validation" : "fit";
-        e.nrmse = n > 0 ? std::sqrt(ss / n) : 0.0;
-        double fs = 0, fn = 0;
-        for (size_t k = 0; k < fr.size(); ++k)
-            if (used[k]) { fs += fr[k] * fr[k]; fn += 1; }
-        e.rms_N = fn > 0 ? std::sqrt(fs / fn) : 0.0;
-        if (isVal) {
-            e.heldOutNrmse = e.nrmse;
-            valSS += ss; valN += n;
-        } else {
-            fitSS += ss; fitN += n;
-        }
-        me.runs.push_back(e);
-    }
-    me.fitNrmse = fitN > 0 ? std::sqrt(fitSS / fitN) : 0.0;
-    if (valIdx.empty() && fitIdx.size() >= 2) {
-        // Leave one run out in turn, warm-started from the full fit. The refits are independent:
-        // one per core (parallelFor), each writing its own slot, gathered in run order below.
-        struct Refit {
-            bool fitted = false, predicted = false, retried = false;
-            std::map<std::string, double> values;
-            double ss = 0, n = 0;
-            long fits = 0;
-        };
-        std::vector<Refit> refits(fitIdx.size());
-        parallelFor(fitIdx.size(), [&](size_t k) {
-            if (cx.opt->cancel && cx.opt->cancel->load()) return;
-            const size_t h = fitIdx[k];
-            std::vector<size_t> rest;
-            for (size_t i : fitIdx) if (i != h) rest.push_back(i);
-            Refit& o = refits[k];
-            FitOutcome f = fitSpec(cx, spec, full.values, rest, 1, o.fits, false, FitStart::NearOptimum,
-                                   FitOutput::ValuesOnly);
-            // A refit that never left the full fit's optimum would make the run's held-out error
-            // its in-sample one: done again at a tolerance its first step meets.
-            if (neverMoved(f) && cx.opt->looFunctionTolerance > kLooRetryTolerance &&
-                !(cx.opt->cancel && cx.opt->cancel->load())) {
-                o.retried = true;
-                FitOutcome g = fitSpec(cx, spec, full.values, rest, 1, o.fits, false, FitStart::NearOptimum,
-                                       FitOutput::ValuesOnly, kLooRetryTolerance);
-                if (g.ok) f = std::move(g);
-            }
-            if (!f.ok) return;
-            o.fitted = true;
-            o.values = std::move(f.values);
-            double mh = kNaN;
-            const ExtendedModel mo = buildModel(cx, spec, o.values, mh);
-            std::vector<double> r;
-            o.predicted = runResiduals(cx, cx.runs[h], mo, mh, r, o.ss, o.n, nullptr, nullptr, nullptr, spec.segments);
-        });
-        for (size_t k = 0; k < fitIdx.size(); ++k) {
-            const Refit& o = refits[k];
-            fits += o.fits;
-            if (!o.fitted) continue;
-            me.retriedRefits += o.retried ? 1 : 0;
-            if (loo) loo->push_back(o.values);
-            if (!o.predicted) continue;
-            RunError& re = me.runs[fitIdx[k]];
-            re.heldOutNrmse = o.n > 0 ? std::sqrt(o.ss / o.n) : 0.0;
-            me.unmovedRefits += std::abs(re.heldOutNrmse - re.nrmse) <= kUnmovedRelative * re.nrmse ? 1 : 0;
-            valSS += o.ss; valN += o.n;
-        }
-    }
-    me.validationNrmse = valN > 0 ? std::sqrt(valSS / valN) : kNaN;
-    return me;
+FitOutcome continueInLawCoordinates(const Context& cx, const Spec& spec, const FitOutcome& curveFit,
+                                    const std::vector<size_t>& idx, long& fits, FitStart from, FitOutput output,
+                                    double retryTolerance) {
+    bool usedCurve = false;
+    FitOutcome law = fitSpecOnce(cx, spec, curveFit.values, idx, 1, fits, false, from, output, retryTolerance, false,
+                                 usedCurve);
+    if (law.ok) law.fit.initialCost = curveFit.fit.initialCost;  // where the whole fit began, for neverMoved
+    return law;
 }
+
+bool lawFitIsBetter(const FitOutcome& curveFit, const FitOutcome& lawFit) {
+    return lawFit.ok && (!curveFit.ok || lawFit.fit.cost < curveFit.fit.cost);
+}
+
+bool neverMoved(const FitOutcome& f) { return f.ok && !(f.fit.cost < f.fit.initialCost * (1.0 - 1e-12)); }
 
 // Diagnostics of a fitted model's force residual (friction channel, samples compared).
 Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds) {

@@ -88,6 +88,7 @@ struct Context {
     // The same runs prepared at their recorded rate (decimation 1), for numericsOffset; null when
     // the runs are not decimated or the noise null does not carry the numerical part.
     const Context* fullRate = nullptr;
+    bool cancelled() const { return opt && opt->cancel && opt->cancel->load(); }
 };
 
 struct FitOutcome {
@@ -102,6 +103,9 @@ struct FitOutcome {
     // η's bounds (curve_coordinates.hpp; 0 for a fit in C1, η, v_c): the edge of the feasible
     // region, which in those coordinates is not a box.
     long outsideLawBounds = 0;
+    // Fits done again or continued in C1, η, v_c after the one in the curve coordinates (fitSpec:
+    // 0 or 1; counted in `fits` like the first).
+    int lawPasses = 0;
     // Pooled NRMSE over the fitted runs (each residual already divided by its run's force RMS);
     // `none` without residuals.
     double nrmse(double none = kNaN) const { return count > 0 ? std::sqrt(ss / count) : none; }
@@ -260,6 +264,20 @@ enum class FitOutput { Full, ValuesOnly };
 FitOutcome fitSpec(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
                    const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness = false,
                    FitStart from = FitStart::Far, FitOutput output = FitOutput::Full, double retryTolerance = 0);
+// One pass of fitSpec without its second pass in C1, η, v_c: `curveAllowed`, whether it may
+// move in the steady-state curve's coordinates; `usedCurve` is set to whether it did.
+FitOutcome fitSpecOnce(const Context& cx, const Spec& spec, const std::map<std::string, double>& start,
+                       const std::vector<size_t>& idx, int multistarts, long& fits, bool scanStiffness, FitStart from,
+                       FitOutput output, double retryTolerance, bool curveAllowed, bool& usedCurve);
+// A fit in the steady-state curve's coordinates continued in C1, η, v_c from where it stopped
+// (one start, no scans; `initialCost` is the first fit's, so neverMoved judges the two as one).
+FitOutcome continueInLawCoordinates(const Context& cx, const Spec& spec, const FitOutcome& curveFit,
+                                    const std::vector<size_t>& idx, long& fits, FitStart from, FitOutput output,
+                                    double retryTolerance);
+// Whether a second pass in C1, η, v_c replaces a fit in the curve coordinates: it succeeded, and
+// the first failed or it reached a lower cost. The costs compared are the solver's, the same sum
+// in both coordinates and set for FitOutput::ValuesOnly too, whose `ss` is not computed.
+bool lawFitIsBetter(const FitOutcome& curveFit, const FitOutcome& lawFit);
 // Whether a successful fit ended where it started: its cost not lowered by a relative 1e-12
 // (the solver took no step).
 bool neverMoved(const FitOutcome& f);

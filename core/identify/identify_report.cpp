@@ -25,7 +25,8 @@ nlohmann::json toJson(const ModelErrors& e) {
         runs.push_back({{"file", r.file}, {"role", r.role}, {"rms_N", num(r.rms_N)}, {"nrmse", num(r.nrmse)},
                         {"held_out_nrmse", num(r.heldOutNrmse)}});
     return {{"fit_nrmse", num(e.fitNrmse)}, {"validation_nrmse", num(e.validationNrmse)}, {"runs", runs},
-            {"held_out_refits_retried", e.retriedRefits}, {"held_out_refits_unmoved", e.unmovedRefits}};
+            {"held_out_refits_retried", e.retriedRefits}, {"held_out_refits_unmoved", e.unmovedRefits},
+            {"held_out_law_coordinate_passes", e.lawPasses}};
 }
 
 }  // namespace
@@ -209,6 +210,12 @@ nlohmann::json toJson(const IdentifyResult& r) {
     if (!r.message.empty()) j["message"] = r.message;
     j["setup"] = r.setup;
     j["baseline"] = baselineJson(r);
+    if (r.polish.refitted)
+        j["final_polish"] = {{"kept", r.polish.kept},
+                             {"fit_ss_before", num(r.polish.ssBefore)},
+                             {"fit_ss_refit", num(r.polish.ssRefit)},
+                             {"held_out_nrmse_before", num(r.polish.heldOutBefore)},
+                             {"held_out_nrmse_refit", num(r.polish.heldOutRefit)}};
     j["before"] = toJson(r.before);
     j["after"] = toJson(r.after);
     j["final_parameters"] = toJson(r.final);

@@ -1,6 +1,7 @@
 // fitSpec (identify_fit.cpp), the identify loop's one fit of a model to runs: its second pass in
 // the law's own coordinates C1, η, v_c is for fits in the steady-state curve's coordinates that
-// met the edge of their feasible region, not for those that start at their optimum. errorsOf's
+// never left their start at the edge of their feasible region, not for those that start at their
+// optimum; errorsOf's held-out refits that met that edge are continued there. errorsOf's
 // leave-one-run-out refits and the loop's parallelFor: the same numbers on any thread layout.
 // Prescribed runs made by the project's own simulator (identify_synth.hpp).
 #include <QtTest/QtTest>
@@ -157,7 +158,7 @@ private slots:
         const ModelErrors spread = errorsOf(cx, spec, f, idx, {}, fitsSpread, &looSpread);
         ModelErrors one;
         parallelFor(1, [&](size_t) { one = errorsOf(cx, spec, f, idx, {}, fitsOne, &looOne); });
-        QCOMPARE(fitsSpread, static_cast<long>(idx.size()) + spread.retriedRefits);
+        QCOMPARE(fitsSpread, static_cast<long>(idx.size()) + spread.retriedRefits + spread.lawPasses);
         QCOMPARE(fitsOne, fitsSpread);
         QCOMPARE(looOne.size(), idx.size());
         QVERIFY(looOne == looSpread);
@@ -187,7 +188,7 @@ private slots:
             QVERIFY2(f.ok, f.message.c_str());
             const long before = fits;
             const ModelErrors e = errorsOf(p.cx, Spec{}, f, idx, {}, fits);
-            QCOMPARE(fits - before, static_cast<long>(idx.size()) + e.retriedRefits);
+            QCOMPARE(fits - before, static_cast<long>(idx.size()) + e.retriedRefits + e.lawPasses);
             if (tol == 1e-2) QCOMPARE(e.retriedRefits, static_cast<int>(idx.size()));
             if (tol == kLooRetryTolerance) QCOMPARE(e.retriedRefits, 0);
             QCOMPARE(e.unmovedRefits, 0);
@@ -196,6 +197,84 @@ private slots:
                          qPrintable(QString("%1: %2 vs %3 (tolerance %4)").arg(r.file.c_str()).arg(r.heldOutNrmse).arg(r.nrmse).arg(tol)));
             QVERIFY2(e.validationNrmse > e.fitNrmse, qPrintable(QString("%1 vs %2").arg(e.validationNrmse).arg(e.fitNrmse)));
         }
+    }
+    // A warm-started fit whose optimum lies on C1's lower bound (runs made with C1 = 1e-5, below
+    // the prescribed fit's bound 1e-4), started at three times the baseline's C1 without one run:
+    // in the steady-state curve's coordinates it asks for points outside C1's bounds and stops
+    // above where C1, η, v_c go; continued in C1, η, v_c from where it stopped (one more fit) it
+    // ends lower, with C1 on its bound, in both outputs (ValuesOnly computes no sum of squares).
+    // fitSpec itself keeps such a fit (it moved): only errorsOf's held-out refits are continued.
+    // errorsOf on the four runs' fit from the same start in the curve coordinates (C1 0.021): a
+    // refit without one run that meets the edge is continued, one more fit each, and no run's
+    // held-out error is its in-sample one.
+    void aFitThatMetTheEdgeIsContinuedInTheLawsCoordinates() {
+        ExtendedModel truth = synth::trueModel();
+        truth.law.C1 = 1e-5;
+        IdentifyOptions opt = synth::testOptions();
+        std::vector<IdentifyRun> runs = synth::makeRuns(truth, 2.0, 0.02, 1);
+        Context cx;
+        std::string why;
+        int dec = 0;
+        QVERIFY2(prepareContext(runs, opt, cx, dec, why), why.c_str());
+        QVERIFY(opt.curveCoordinates);
+        const std::vector<size_t> all = {0, 1, 2, 3};
+        long fits = 0;
+        const FitOutcome base = fitSpec(cx, Spec{}, baselineStart(cx, all), all, 1, fits, true);
+        QVERIFY2(base.ok, base.message.c_str());
+        std::map<std::string, double> start = base.values;
+        start["C1"] = 3 * base.values.at("C1");
+        const std::vector<size_t> idx = {0, 1, 2};
+        for (FitOutput output : {FitOutput::ValuesOnly, FitOutput::Full}) {
+            bool usedCurve = false;
+            long once = 0;
+            const FitOutcome c = fitSpecOnce(cx, Spec{}, start, idx, 1, once, false, FitStart::NearOptimum, output, 0, true,
+                                             usedCurve);
+            QVERIFY(usedCurve);
+            QVERIFY2(c.ok, c.message.c_str());
+            QVERIFY2(c.outsideLawBounds > 0, "the premise does not hold: the curve coordinates never met the edge");
+            QVERIFY(!neverMoved(c));
+            long n = 0;
+            const FitOutcome kept = fitSpec(cx, Spec{}, start, idx, 1, n, false, FitStart::NearOptimum, output);
+            QCOMPARE(n, 1L);
+            QVERIFY(kept.fit.cost == c.fit.cost);
+            const FitOutcome g = continueInLawCoordinates(cx, Spec{}, c, idx, n, FitStart::NearOptimum, output, 0);
+            QVERIFY2(g.ok, g.message.c_str());
+            qInfo("curve coordinates: cost %.9g, %ld points outside; continued: cost %.9g, C1 %g", c.fit.cost,
+                  c.outsideLawBounds, g.fit.cost, g.values.at("C1"));
+            QCOMPARE(n, 2L);
+            QCOMPARE(g.outsideLawBounds, 0L);
+            QVERIFY(lawFitIsBetter(c, g));
+            QVERIFY(g.fit.cost < c.fit.cost * (1 - 1e-6));
+            QCOMPARE(g.fit.initialCost, c.fit.initialCost);
+            QVERIFY(std::abs(g.values.at("C1") - 1e-4) <= 1e-9);
+            if (output == FitOutput::Full) QVERIFY(g.ss < c.ss);
+        }
+        bool usedCurve = false;
+        const FitOutcome four = fitSpecOnce(cx, Spec{}, start, all, 1, fits, false, FitStart::NearOptimum, FitOutput::Full, 0, true, usedCurve);
+        long before = fits;
+        const ModelErrors e = errorsOf(cx, Spec{}, four, all, {}, fits);
+        qInfo("errorsOf from C1 = %g: %d passes in C1, eta, v_c in %zu refits, %d retried, %d unmoved", four.values.at("C1"), e.lawPasses,
+              all.size(), e.retriedRefits, e.unmovedRefits);
+        QVERIFY2(e.lawPasses > 0, "the premise does not hold: no held-out refit met the edge");
+        QCOMPARE(fits - before, static_cast<long>(all.size()) + e.retriedRefits + e.lawPasses);
+        QCOMPARE(e.unmovedRefits, 0);
+    }
+
+    // lawFitIsBetter: the second pass replaces the first when it succeeded and the first failed
+    // or it reached a lower solver cost, on that cost alone (ValuesOnly outcomes carry ss = NaN).
+    void theSecondPassIsKeptOnItsCost() {
+        FitOutcome curve, law;
+        curve.ok = law.ok = true;
+        curve.ss = law.ss = kNaN;
+        curve.fit.cost = 2.0;
+        law.fit.cost = 1.0;
+        QVERIFY(lawFitIsBetter(curve, law));
+        law.fit.cost = 2.0;
+        QVERIFY(!lawFitIsBetter(curve, law));
+        curve.ok = false;
+        QVERIFY(lawFitIsBetter(curve, law));
+        law.ok = false;
+        QVERIFY(!lawFitIsBetter(curve, law));
     }
 };
 

@@ -147,9 +147,23 @@ private slots:
         // The final model converged too: a candidate of the last round whose size ended on the
         // bound where its effect vanishes is the final model at another point, so it cannot fit
         // the runs better (D06 in session 54: frictional_lag with tau on its lower bound, fit
-        // NRMSE 0.0240 against the final model's 0.0320; polishFinalModel, session 55).
+        // NRMSE 0.0240 against the final model's 0.0320; polishFinalModel, session 55) unless
+        // the final model refitted there predicted the held-out runs worse and was not kept
+        // (FinalPolish; D18 in session 65): then the report says so, with both held-out errors.
         const int lastRound = static_cast<int>(r.effectsAdded.size()) + 1;
+        const auto j = toJson(r);
+        QCOMPARE(j.contains("final_polish"), r.polish.refitted);
+        if (r.polish.refitted) {
+            qInfo("%s: final polish %s: sum of squares %.4f -> %.4f, held-out NRMSE %.5f -> %.5f", name.c_str(),
+                  r.polish.kept ? "kept" : "not kept", r.polish.ssBefore, r.polish.ssRefit, r.polish.heldOutBefore,
+                  r.polish.heldOutRefit);
+            QCOMPARE(j["final_polish"]["kept"].get<bool>(), r.polish.kept);
+            QVERIFY(r.polish.ssRefit < r.polish.ssBefore);
+            QCOMPARE(r.after.validationNrmse, r.polish.kept ? r.polish.heldOutRefit : r.polish.heldOutBefore);
+            QCOMPARE(r.polish.kept, !(r.polish.heldOutRefit > r.polish.heldOutBefore));
+        }
         for (const CandidateScore& c : r.candidates) {
+            if (r.polish.refitted && !r.polish.kept) break;
             EffectInfo info;
             if (c.round != lastRound || c.accepted || c.residual != r.residual || !findEffect(c.name, info) ||
                 info.params.empty())
