@@ -291,6 +291,9 @@ struct IdentifyOptions {
     SelfTestOptions selfTest;
     const std::atomic<bool>* cancel = nullptr;
     std::function<void(const std::string& stage, double fraction)> progress;
+    // Whether the caller has asked the run to stop (`cancel` set and raised): the one check every
+    // stage of identify polls.
+    bool cancelRequested() const { return cancel && cancel->load(std::memory_order_relaxed); }
     // Every option out of its range (field named as the CLI's option with '_', the value and the
     // allowed range), the self-test's included; empty when usable.
     ParamIssues validate() const;

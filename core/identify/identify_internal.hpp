@@ -88,7 +88,7 @@ struct Context {
     // The same runs prepared at their recorded rate (decimation 1), for numericsOffset; null when
     // the runs are not decimated or the noise null does not carry the numerical part.
     const Context* fullRate = nullptr;
-    bool cancelled() const { return opt && opt->cancel && opt->cancel->load(); }
+    bool cancelled() const { return opt && opt->cancelRequested(); }
 };
 
 struct FitOutcome {

@@ -48,7 +48,7 @@ struct Loop {
     mutable bool stageOpen = false;  // the last stage of res.timeline is still running
     mutable long stageFits0 = 0;     // res.fits when it began
 
-    bool cancelled() const { return opt.cancel && opt.cancel->load(); }
+    bool cancelled() const { return opt.cancelRequested(); }
     // Reports a stage to the caller and opens it in res.timeline (closing the previous one).
     void progress(const std::string& s, double f) const {
         closeStage();

@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "identify_loop.hpp"
@@ -242,7 +243,7 @@ Snapshot snapshot(const Loop& L) {
 }
 
 // Back to `s`, but the fits run and the stages timed since stay counted.
-void restore(Loop& L, Snapshot s) {
+void restore(Loop& L, Snapshot&& s) {
     const long fits = L.res.fits;
     std::vector<IdentifyStage> timeline = std::move(L.res.timeline);
     L.cur = std::move(s.cur);
@@ -285,11 +286,11 @@ bool restartFromCandidates(Loop& L, const std::vector<Tried>& tried) { return re
 // runs' noise, not the device (docs/identify-results.md, D18); the model before it is kept and
 // the note says why.
 bool polishFinalModel(Loop& L) {
-    const Snapshot before = snapshot(L);
+    Snapshot before = snapshot(L);
     if (!restartFromFits(L, L.lastOnBound, true)) return false;
     FinalPolish p{true, !(L.curHeldOut > before.curHeldOut), before.cur.ss, L.cur.ss, before.curHeldOut, L.curHeldOut};
     if (!p.kept) {
-        restore(L, before);
+        restore(L, std::move(before));
         std::string& note = L.spec.effects.empty() ? L.res.baselineNote : L.res.effectsAdded.back().note;
         note += std::string(note.empty() ? "" : "; ") + "after the last round, the final model was refitted from a lower minimum (sum of squares " +
                 std::to_string(p.ssRefit) + " against " + std::to_string(p.ssBefore) +

@@ -128,7 +128,7 @@ struct SelfTestRun {
         : cx(cx_), spec(spec_), base(base_), fitIdx(fitIdx_), cands(cands_), neffCap(neffCap_), opt(*cx_.opt),
           so(opt.selfTest), nullSeed(opt.seed + 6151u), replicaSeed(opt.seed + 104729u) {}
 
-    bool cancelled() const { return opt.cancel && opt.cancel->load(); }
+    bool cancelled() const { return opt.cancelRequested(); }
     void progress(const std::string& s, double f) const { if (opt.progress) opt.progress("self-test: " + s, f); }
     bool stop(std::string why) { out.message = std::move(why); return false; }
 

@@ -162,7 +162,7 @@ SimulatedNull simulatedGainNull(const Context& cx, const Spec& cur, const std::m
     // A replica of the fit runs from `model`; false, with out.note saying why, when cancelled or
     // when it cannot be made.
     auto replica = [&](uint64_t sd, std::vector<IdentifyRun>& reps, Context& rc) {
-        if (opt.cancel && opt.cancel->load()) {
+        if (opt.cancelRequested()) {
             out.note = "cancelled";
             return false;
         }

@@ -5,6 +5,7 @@
 #include <QtTest/QtTest>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -389,6 +390,18 @@ private slots:
                               "line_search_steps = 0 is out of range: must be >= 1", "replicas = -3",
                               "loo_function_tolerance = 0 is out of range: must be in (0, 0.01]"})
             QVERIFY2(all.find(s) != std::string::npos, qPrintable(QString::fromStdString(all)));
+    }
+    // The one cancel check every stage polls: false without a flag, then the flag's value.
+    void cancelRequestedFollowsTheFlag() {
+        IdentifyOptions o;
+        QVERIFY(!o.cancelRequested());
+        std::atomic<bool> stop{false};
+        o.cancel = &stop;
+        QVERIFY(!o.cancelRequested());
+        stop = true;
+        QVERIFY(o.cancelRequested());
+        stop = false;
+        QVERIFY(!o.cancelRequested());
     }
     void lawParametersAreTheContactOnes() {
         for (const char* n : {"mu", "C1", "eta", "Dc", "vc", "epsT", "backlash.halfWidth_m", "frictional_lag.tau_s"})
