@@ -9,6 +9,7 @@
 #include "core/io/units.hpp"
 #include "core/identify/fit_report.hpp"
 #include "core/identify/pipeline.hpp"
+#include "core/integrate/run_result.hpp"
 
 namespace stickslip::gui {
 
@@ -32,7 +33,7 @@ bool cleanRuns(const MeasuredRuns& runs, std::vector<CleanRun>& fit, std::vector
     fit.clear();
     validation.clear();
     for (size_t i = 0; i < runs.data.runs.size(); ++i) {
-        if (cancel && cancel->load()) {
+        if (stickslip::cancelRequested(cancel)) {
             if (error) *error = "cancelled";
             return false;
         }
@@ -122,7 +123,7 @@ FitOutcome runFitJob(const FitRequest& request, const std::atomic<bool>* cancel,
     std::vector<CleanRun> fitRuns, valRuns;
     std::string why;
     if (!cleanRuns(request.runs, fitRuns, valRuns, &why, cancel)) {
-        out.cancelled = cancel && cancel->load();
+        out.cancelled = stickslip::cancelRequested(cancel);
         out.message = QString::fromStdString(why);
         out.elapsed_ms = msSince(clock);
         return out;
@@ -156,13 +157,13 @@ FitOutcome runFitJob(const FitRequest& request, const std::atomic<bool>* cancel,
     std::vector<identify::DatasetFit> fits;
     identify::PipelineStatus status;
     if (!identify::fitLaws(fitRuns, valRuns, st, request.laws, fits, status, {}, fitted) &&
-        !(cancel && cancel->load())) {
+        !(stickslip::cancelRequested(cancel))) {
         out.message = QString::fromStdString(status.message);
         out.elapsed_ms = msSince(clock);
         return out;
     }
     out.elapsed_ms = msSince(clock);
-    if (cancel && cancel->load()) {
+    if (stickslip::cancelRequested(cancel)) {
         out.cancelled = true;
         out.fits.clear();
         out.message = QStringLiteral("cancelled");
@@ -182,7 +183,7 @@ IdentifyOutcome runIdentifyJob(const IdentifyRequest& request, const std::atomic
     std::vector<CleanRun> fitRuns, valRuns;
     std::string why;
     if (!cleanRuns(request.runs, fitRuns, valRuns, &why, cancel)) {
-        out.cancelled = cancel && cancel->load();
+        out.cancelled = stickslip::cancelRequested(cancel);
         out.message = QString::fromStdString(why);
         out.elapsed_ms = msSince(clock);
         return out;
@@ -208,7 +209,7 @@ IdentifyOutcome runIdentifyJob(const IdentifyRequest& request, const std::atomic
     };
     out.result = identifyEffects(std::move(runs), opt);
     out.elapsed_ms = msSince(clock);
-    out.cancelled = out.result.cancelled || (cancel && cancel->load());
+    out.cancelled = out.result.cancelled || (stickslip::cancelRequested(cancel));
     out.ok = out.result.ok && !out.cancelled;
     if (out.cancelled) out.message = QStringLiteral("cancelled");
     else if (!out.ok) out.message = QString::fromStdString(out.result.message);

@@ -143,7 +143,7 @@ class ControlCallback : public ceres::IterationCallback {
 public:
     ControlCallback(const FitProblem& p, int start, int starts) : p_(p), start_(start), starts_(starts) {}
     ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
-        if (p_.cancel && p_.cancel->load(std::memory_order_relaxed)) return ceres::SOLVER_ABORT;
+        if (cancelRequested(p_.cancel)) return ceres::SOLVER_ABORT;
         if (p_.progress) {
             const double within = std::min(1.0, static_cast<double>(s.iteration + 1) / std::max(1, p_.maxIterations));
             p_.progress((start_ + within) / starts_);
@@ -288,7 +288,7 @@ ceres::Solver::Summary solveFrom(const FitProblem& prob, const Mapping& map, Poi
     const std::vector<double> z0 = z;
     ceres::Solver::Summary first = solveOnce(prob, map, evaluator, z, s, {});
     if (first.IsSolutionUsable()) first.final_cost = costAt(prob, evaluator, z);
-    if (z != z0 || !first.IsSolutionUsable() || (prob.cancel && prob.cancel->load(std::memory_order_relaxed))) return first;
+    if (z != z0 || !first.IsSolutionUsable() || (cancelRequested(prob.cancel))) return first;
     std::vector<int> held;
     for (size_t k = 0; k < z0.size(); ++k) {
         const double tol = 1e-12 * std::max(1.0, std::abs(z0[k]));
@@ -401,7 +401,7 @@ BestStart runStarts(const FitProblem& prob, const Mapping& map, PointEvaluator& 
         if (s == 0) z = scannedPoint(prob, map, evaluator, std::move(z), perStart);
         const ceres::Solver::Summary summary = solveFrom(prob, map, evaluator, z, s);
         ++res.startsTried;
-        if (prob.cancel && prob.cancel->load(std::memory_order_relaxed)) best.cancelled = true;
+        if (cancelRequested(prob.cancel)) best.cancelled = true;
         const bool usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
         res.startCosts.push_back(usable ? summary.final_cost : std::numeric_limits<double>::quiet_NaN());
         perStart << "start " << s << ": " << (usable ? "cost " + fmt(summary.final_cost) : "failed: " + summary.message)

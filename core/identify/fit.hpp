@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "../integrate/run_result.hpp"
 #include "../params.hpp"
 #include "predict.hpp"
 

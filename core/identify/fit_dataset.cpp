@@ -267,7 +267,7 @@ void installResiduals(FitProblem& prob, const std::vector<CleanRun>& fitRuns, co
                 if (!inBounds[pt]) continue;
                 // Cancelled: the remaining tasks of the batch fail at once instead of each
                 // predicting a whole run (the cancel latency of a dynamics fit).
-                if (st.cancel && st.cancel->load(std::memory_order_relaxed)) continue;
+                if (cancelRequested(st.cancel)) continue;
                 const Prediction p = predictRun(fitRuns[k], st.setup, specs[pt], st.predict);
                 if (!p.ok || p.index.size() != L.index[k].size()) continue;
                 const std::vector<double>& F = fitRuns[k].run[Signal::Friction];
@@ -359,7 +359,7 @@ void jackknifeOverRuns(const std::vector<CleanRun>& fitRuns, const DatasetFitSet
     const size_t K = fitRuns.size();
     std::vector<std::vector<double>> est;
     for (size_t k = 0; k < K; ++k) {
-        if (st.cancel && st.cancel->load()) break;
+        if (cancelRequested(st.cancel)) break;
         if (st.progress) js.progress = [&st, k, parts](double f) { st.progress((static_cast<double>(k + 1) + f) / parts); };
         std::vector<CleanRun> sub;
         for (size_t q = 0; q < K; ++q)

@@ -90,7 +90,7 @@ public:
             }
         }
         const FitProblem& prob = *map_.prob;
-        if (!todo.empty() && prob.cancel && prob.cancel->load(std::memory_order_relaxed)) {
+        if (!todo.empty() && cancelRequested(prob.cancel)) {
             // Cancelled: no new batch (a dynamics batch takes seconds). The points fail and
             // are not remembered; the iteration callback then aborts the solve.
             for (Ptr& o : out)

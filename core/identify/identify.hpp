@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "../integrate/run_result.hpp"
 #include "../params.hpp"
 #include "diagnostics.hpp"
 #include "extended_model.hpp"
@@ -293,7 +294,7 @@ struct IdentifyOptions {
     std::function<void(const std::string& stage, double fraction)> progress;
     // Whether the caller has asked the run to stop (`cancel` set and raised): the one check every
     // stage of identify polls.
-    bool cancelRequested() const { return cancel && cancel->load(std::memory_order_relaxed); }
+    bool cancelRequested() const { return stickslip::cancelRequested(cancel); }
     // Every option out of its range (field named as the CLI's option with '_', the value and the
     // allowed range), the self-test's included; empty when usable.
     ParamIssues validate() const;

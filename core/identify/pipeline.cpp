@@ -206,7 +206,7 @@ bool fitLaws(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& 
     const std::function<void(double)> progress = st.progress;
     const double nLaws = static_cast<double>(std::max<size_t>(laws.size(), 1));
     for (size_t i = 0; i < laws.size(); ++i) {
-        if (st.cancel && st.cancel->load()) return fail(status, PipelineCode::Cancelled, "cancelled");
+        if (cancelRequested(st.cancel)) return fail(status, PipelineCode::Cancelled, "cancelled");
         st.law = laws[i];
         if (progress)
             st.progress = [&progress, i, nLaws](double f) { progress((static_cast<double>(i) + f) / nLaws); };
@@ -216,7 +216,7 @@ bool fitLaws(const std::vector<CleanRun>& fitRuns, const std::vector<CleanRun>& 
                 " validation runs)...");
         DatasetFit f = fitDataset(fitRuns, validationRuns, st);
         if (!f.ok) {
-            const bool cancelled = st.cancel && st.cancel->load();
+            const bool cancelled = cancelRequested(st.cancel);
             return fail(status, cancelled ? PipelineCode::Cancelled : PipelineCode::RunFailed,
                         std::string(toString(st.law)) + ": " + f.message);
         }

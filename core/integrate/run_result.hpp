@@ -50,12 +50,16 @@ struct RunResult {
     bool ok() const { return status == RunStatus::Ok; }
 };
 
+// The one cancel test of every long job (runs, fits, identify, the app's workers): a null flag
+// means "cannot be cancelled". Relaxed: the flag orders nothing else, it is only polled.
+inline bool cancelRequested(const std::atomic<bool>* flag) { return flag && flag->load(std::memory_order_relaxed); }
+
 // Cooperative cancellation and progress. The run polls `cancel` every block of steps
 // and returns what it has with RunStatus::Cancelled.
 struct RunControl {
     const std::atomic<bool>* cancel = nullptr;
     std::function<void(double fraction)> progress;  // called from the running thread
-    bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+    bool cancelled() const { return cancelRequested(cancel); }
     // When set, every output sample is handed here (on the running thread, in time order)
     // instead of being kept in RunResult::samples: a long run streamed to a file then holds
     // no samples in memory. The run's status, message and stats are still returned.

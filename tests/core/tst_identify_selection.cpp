@@ -393,15 +393,22 @@ private slots:
     }
     // The one cancel check every stage polls: false without a flag, then the flag's value.
     void cancelRequestedFollowsTheFlag() {
+        // The free test (run_result.hpp), the run's and identify's members read one flag alike;
+        // no flag is "never cancelled".
         IdentifyOptions o;
+        RunControl ctl;
         QVERIFY(!o.cancelRequested());
+        QVERIFY(!ctl.cancelled());
+        QVERIFY(!stickslip::cancelRequested(nullptr));
         std::atomic<bool> stop{false};
         o.cancel = &stop;
-        QVERIFY(!o.cancelRequested());
-        stop = true;
-        QVERIFY(o.cancelRequested());
-        stop = false;
-        QVERIFY(!o.cancelRequested());
+        ctl.cancel = &stop;
+        for (bool v : {false, true, false}) {
+            stop = v;
+            QCOMPARE(stickslip::cancelRequested(&stop), v);
+            QCOMPARE(o.cancelRequested(), v);
+            QCOMPARE(ctl.cancelled(), v);
+        }
     }
     void lawParametersAreTheContactOnes() {
         for (const char* n : {"mu", "C1", "eta", "Dc", "vc", "epsT", "backlash.halfWidth_m", "frictional_lag.tau_s"})
