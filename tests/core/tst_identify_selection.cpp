@@ -392,6 +392,75 @@ private slots:
             QVERIFY2(all.find(s) != std::string::npos, qPrintable(QString::fromStdString(all)));
     }
     // The one cancel check every stage polls: false without a flag, then the flag's value.
+    // The p of a paired test over runs, as the selection and the "unexplained" verdict judge it.
+    void pairedTestPIsTheExactMidPFromFiveRuns() {
+        const IdentifyOptions opt;
+        bool exact = false;
+        const PairedTest five = pairedLogRatioTest({1, 1, 1, 1, 1}, {0.8, 0.9, 0.7, 0.95, 0.85});
+        QCOMPARE(pairedTestP(opt, five, exact), 1.0 / 64.0);
+        QVERIFY(exact);
+        const PairedTest four = pairedLogRatioTest({1, 1, 1, 1}, {0.8, 0.9, 0.7, 0.95});
+        QCOMPARE(pairedTestP(opt, four, exact), four.pValue);
+        QVERIFY(!exact);
+        IdentifyOptions plain;
+        plain.heldOutMidP = false;
+        QCOMPARE(pairedTestP(plain, five, exact), 1.0 / 32.0);
+    }
+    // "Unexplained" needs phase-locked structure that leave-one-cycle-out prediction finds
+    // consistently over the runs (the held-out test) and above the relevance margin.
+    void unexplainedNeedsAConsistentRelevantPhaseLock() {
+        IdentifyOptions opt;
+        Diagnostics d;
+        d.correlations = {{"time_since_reversal", 0.4}, {"V", -0.6}};
+        auto gains = [&](const std::vector<double>& g) {
+            std::vector<double> before, after;
+            for (double x : g) {
+                before.push_back(1.0);
+                after.push_back(std::exp(-x));
+            }
+            PhaseLocked& pl = d.phaseLocked;
+            pl.test = pairedLogRatioTest(before, after);
+            pl.runs = static_cast<int>(g.size());
+            pl.meanLogRatio = pl.test.meanLogRatio;
+            pl.share = -std::expm1(-pl.meanLogRatio);
+            pl.band_Hz = 25.0;
+        };
+        std::string why;
+        gains({0.2, 0.15, 0.3, 0.1, 0.25});
+        QVERIFY(phaseLockedUnexplained(opt, d, why));
+        QVERIFY2(why.find("below 25 Hz") != std::string::npos && why.find("mid-p") != std::string::npos &&
+                     why.find("V r = -0.6") != std::string::npos,
+                 why.c_str());
+        gains({0.02, 0.03, 0.04, 0.03, 0.02});  // every run, but below the 5 % margin
+        QVERIFY(!phaseLockedUnexplained(opt, d, why));
+        QVERIFY(why.empty());
+        opt.minHeldOutGain = 0;  // significance alone
+        QVERIFY(phaseLockedUnexplained(opt, d, why));
+        opt.minHeldOutGain = 0.05;
+        gains({0.5, -0.1, 0.4, -0.05, 0.3});  // large on average, not consistent: mid-p 7/64
+        QVERIFY(!phaseLockedUnexplained(opt, d, why));
+        gains({0.5, 0.4});  // too few runs to judge
+        QVERIFY(!phaseLockedUnexplained(opt, d, why));
+    }
+    void structureBandFollowsTheChain() {
+        IdentifyOptions opt;
+        Context cx;
+        cx.opt = &opt;
+        IdentifyRun filtered, raw;
+        filtered.filtered = true;
+        filtered.filters.lowPass_Hz = 100.0;
+        cx.runs.resize(2);
+        cx.runs[0].run = &raw;
+        cx.runs[1].run = &filtered;
+        QCOMPARE(structureBand(cx, 500.0), 25.0);   // a quarter of the low-pass cutoff
+        QCOMPARE(structureBand(cx, 128.0), 16.0);   // a quarter of the Nyquist frequency, lower
+        filtered.filters.lowPass = false;
+        QCOMPARE(structureBand(cx, 500.0), 62.5);
+        opt.structureBand_Hz = 10.0;
+        QCOMPARE(structureBand(cx, 500.0), 10.0);
+        opt.structureBand_Hz = -1.0;
+        QVERIFY(!opt.validate().empty());
+    }
     void cancelRequestedFollowsTheFlag() {
         // The free test (run_result.hpp), the run's and identify's members read one flag alike;
         // no flag is "never cancelled".
