@@ -164,10 +164,6 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
     cmd->add_option("--min-held-out-gain", o->req.options.minHeldOutGain,
                     "relevance margin: an effect must also lower the held-out MSE by at least this fraction on average "
                     "over the held-out runs, in [0, 1); 0: significance alone")->capture_default_str();
-    cmd->add_option("--structure-band", o->req.options.structureBand_Hz,
-                    "Hz: the final residual is reported unexplained when its phase means below this, taken from the "
-                    "other forcing cycles, predict each cycle (the held-out test and relevance margin above, over the runs); "
-                    "0: a quarter of the cleaning low-pass cutoff or of the Nyquist frequency, >= 0")->capture_default_str();
     cmd->add_option("--identifiability-alpha", o->req.options.identifiabilityAlpha,
                     "level of the size test (effect parameter vs its jackknife s.e.), in (0, 1)")->capture_default_str();
     cmd->add_option("--confounded-vif", o->req.options.confoundedVif,

@@ -202,7 +202,7 @@ void IdentifyLoopTab::showOutcome(const IdentifyOutcome& o) {
     else if (!resolution.isEmpty())
         unexplained_->setText(tr("<b>Numerical resolution</b>: %1").arg(resolution.toHtmlEscaped()));
     else
-        unexplained_->setText(tr("<b>No unexplained structure</b>: nothing in the final residual repeats from cycle to cycle beyond the relevance margin."));
+        unexplained_->setText(tr("<b>No unexplained structure</b>: the final residual looks like noise."));
     unexplained_->setStyleSheet(warn ? "QLabel { color: #9a5b00; }" : "QLabel { color: #2a6b2a; }");
     showBeforeAfter(r, added);
     showEffects(r);

@@ -29,24 +29,6 @@ std::vector<double> centralDifference(const std::vector<double>& t, const std::v
 
 }  // namespace
 
-// Forcing frequency: the run's, or from the number of reversals of V (two per cycle).
-double forcingFrequencyOf(const DiagnosticRun& run, double vStick) {
-    if (run.forcingFrequency_Hz > 0) return run.forcingFrequency_Hz;
-    const size_t n = std::min(run.t_s.size(), run.relVel_mps.size());
-    if (n < 2) return 1.0;
-    int reversals = 0;
-    double lastSign = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const double V = run.relVel_mps[i];
-        if (std::abs(V) < vStick) continue;
-        const double sg = V > 0 ? 1 : -1;
-        if (lastSign != 0 && sg != lastSign) ++reversals;
-        lastSign = sg;
-    }
-    const double dur = run.t_s[n - 1] - run.t_s.front();
-    return dur > 0 ? std::max(reversals, 1) / (2.0 * dur) : 1.0;
-}
-
 // Friction residuals flip with the slip direction, so every signal except absV is made odd
 // in V (multiplied by sign V) — a constant or slowly varying effect on μ then shows up as a
 // correlation with the signal rather than cancelling between the two directions.
@@ -57,8 +39,21 @@ std::vector<std::vector<double>> candidateSignals(const DiagnosticRun& run, doub
     const std::vector<double>& V = run.relVel_mps;
     const std::vector<double> dV = centralDifference(run.t_s, V);
     const bool haveAcc = run.accel_mps2.size() == n;
-    const double f = forcingFrequencyOf(run, vStick);
+    // Forcing frequency: given, or from the number of reversals.
+    double f = run.forcingFrequency_Hz;
     double lastSign = 0;
+    if (!(f > 0)) {
+        int reversals = 0;
+        for (size_t i = 0; i < n; ++i) {
+            if (std::abs(V[i]) < vStick) continue;
+            const double sg = V[i] > 0 ? 1 : -1;
+            if (lastSign != 0 && sg != lastSign) ++reversals;
+            lastSign = sg;
+        }
+        const double dur = run.t_s.back() - run.t_s.front();
+        f = dur > 0 ? std::max(reversals, 1) / (2.0 * dur) : 1.0;
+    }
+    lastSign = 0;
     double tReversal = run.t_s[0], stickStart = run.t_s[0], lastStick = 0, slip = run.accumulatedSlipStart_m;
     bool inStick = true;
     const bool haveSlip = run.slip_m.size() == n;
@@ -366,7 +361,7 @@ Spectrum powerSpectrum(const std::vector<double>& x, double dt, double f0, int m
     return sp;
 }
 
-Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation, double vStick, double band_Hz) {
+Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation, double vStick) {
     Diagnostics d;
     const auto names = candidateSignalNames();
     std::vector<double> res;
@@ -426,7 +421,6 @@ Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation, dou
         // τ_int on the undecimated residual of the longest run.
         d.integratedAcfTime = integratedAcfTime(autocorrelation(run.residual, 200));
     }
-    d.phaseLocked = phaseLockedStructure(runs, decimation, vStick, band_Hz);
     return d;
 }
 

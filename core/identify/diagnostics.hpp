@@ -22,10 +22,6 @@ struct DiagnosticRun {
     int runIndex = 0;                     // position in recording order
 };
 
-// The run's forcing frequency, else estimated from the reversals of V (|V| ≥ vStick), two per
-// cycle; 1 Hz when nothing can be said.
-double forcingFrequencyOf(const DiagnosticRun& run, double stickVelocity_mps);
-
 // Names of the candidate signals, in report order:
 // signV V absV dVdt accel displacement time_since_reversal time_stuck_before_slip
 // accumulated_slip tN run_index cycle_index
@@ -60,55 +56,10 @@ struct Whiteness {
     // variance estimated from successive differences (von Neumann, σ²_n = Σ(r_i − r_{i−1})²/2(n−1)),
     // minus one. ≈ 0 (± 2/√n) for white noise; a slowly varying model error raises it.
     double structureRatio = 0;
-    // Not white AND structureRatio > kStructureRatioLimit, i.e. the slowly varying part carries
-    // more than a third of the residual variance. Reported only: on the exact models of the
-    // shared sets the measurement chain alone reaches it (identify's "unexplained" verdict is
-    // PhaseLocked's, below).
+    // Structure that matters: not white AND structureRatio > kStructureRatioLimit, i.e. the
+    // slowly varying part carries more than a third of the residual variance.
     bool structured = false;
     static constexpr double kStructureRatioLimit = 0.5;
-};
-
-// Paired comparison of two models over K independent held-out units (runs): d_i = ln(before_i /
-// after_i) with before/after the held-out mean squared errors of unit i (units with a missing or
-// non-positive value are skipped). The log ratio makes a run's relative improvement the
-// unit, so runs with different error scales weigh alike. One-sided t statistic
-// t = mean(d) / (sd(d)/√K) with K−1 degrees of freedom; p = P(T_{K−1} > t). K < 2: no test
-// (units < 2, t = NaN, p = NaN).
-// Also the exact sign-flip (Fisher–Pitman permutation) test of the same statistic, which needs
-// no normality: p = share of the 2^K sign patterns s with Σ s_i |d_i| ≥ Σ d_i (K ≤ 20; NaN
-// above). It is the right test when the runs improve by very different amounts (one run's
-// large gain inflates sd(d) and can sink the t-test although every run improved), but its
-// smallest p is 2^−K: with K ≤ 4 it can never reach 5 %.
-// Its mid-p (Lancaster 1961; Agresti, Categorical Data Analysis, 3rd ed., §1.4.5) counts the
-// observed pattern's own probability half: P(S > s) + ½ P(S = s). A test with 2^K outcomes can
-// only reject at multiples of 2^−K, so the plain p overstates the evidence against the null by
-// up to one step; the mid-p has mean ½ under the null, as a continuous p-value has.
-struct PairedTest {
-    int units = 0;
-    double meanLogRatio = 0;  // mean d (> 0: after is better)
-    double t = 0;
-    double pValue = 1;        // one-sided, t-test
-    double exactP = 1;        // one-sided, sign-flip permutation test: P(S ≥ s)
-    double midP = 1;          // the same test's mid-p: P(S > s) + ½ P(S = s)
-};
-PairedTest pairedLogRatioTest(const std::vector<double>& before, const std::vector<double>& after);
-
-// Phase-locked structure: the part of a residual that repeats from forcing cycle to forcing
-// cycle, measured out of sample. A model error under periodic forcing leaves a residual that is
-// a function of the forcing phase; noise, coloured or not, does not repeat at the same phase.
-// Per run, each whole cycle is predicted by the residual's mean at each phase over the other
-// cycles (leave one cycle out): the log ratio of the residual's mean square to that of the
-// prediction error is the run's gain. The gains of independent runs are judged like a
-// candidate's held-out gains (the paired sign-flip test over runs and the relevance margin,
-// identify.hpp), so the verdict calibrates itself on the runs at hand.
-struct PhaseLocked {
-    int runs = 0;                      // runs with >= 3 whole cycles (the others are skipped)
-    std::vector<double> runLogRatio;   // per run, ln(MS residual / MS cross-predicted residual); NaN: skipped
-    std::vector<int> binsPerCycle;     // per run (0: skipped)
-    double band_Hz = 0;                // the phase means are of the residual below this (0: all of it)
-    double meanLogRatio = 0;           // over the runs used
-    double share = 0;                  // 1 - exp(-meanLogRatio): share of the residual MSE that repeats
-    PairedTest test;                   // the paired test over the runs used
 };
 
 struct Diagnostics {
@@ -117,7 +68,6 @@ struct Diagnostics {
     Spectrum spectrum;                          // of the longest run's residual
     Whiteness whiteness;                        // of the runs' residuals (pooled statistic)
     double integratedAcfTime = 1;               // τ_int = 1 + 2 Σ ρ_k (samples): n_eff = n/τ_int
-    PhaseLocked phaseLocked;                    // of the runs' residuals (phaseLockedStructure)
 };
 
 // Autocorrelation of x (mean removed) at lags 0 … maxLag, by FFT (FFTW).
@@ -144,25 +94,38 @@ double studentTQuantile(double p, double dof);
 double gammaCdf(double x, double shape, double scale);
 double gammaQuantile(double p, double shape, double scale);
 
+// Paired comparison of two models over K independent held-out units (runs): d_i = ln(before_i /
+// after_i) with before/after the held-out mean squared errors of unit i (units with a missing or
+// non-positive value are skipped). The log ratio makes a run's relative improvement the
+// unit, so runs with different error scales weigh alike. One-sided t statistic
+// t = mean(d) / (sd(d)/√K) with K−1 degrees of freedom; p = P(T_{K−1} > t). K < 2: no test
+// (units < 2, t = NaN, p = NaN).
+// Also the exact sign-flip (Fisher–Pitman permutation) test of the same statistic, which needs
+// no normality: p = share of the 2^K sign patterns s with Σ s_i |d_i| ≥ Σ d_i (K ≤ 20; NaN
+// above). It is the right test when the runs improve by very different amounts (one run's
+// large gain inflates sd(d) and can sink the t-test although every run improved), but its
+// smallest p is 2^−K: with K ≤ 4 it can never reach 5 %.
+// Its mid-p (Lancaster 1961; Agresti, Categorical Data Analysis, 3rd ed., §1.4.5) counts the
+// observed pattern's own probability half: P(S > s) + ½ P(S = s). A test with 2^K outcomes can
+// only reject at multiples of 2^−K, so the plain p overstates the evidence against the null by
+// up to one step; the mid-p has mean ½ under the null, as a continuous p-value has.
+struct PairedTest {
+    int units = 0;
+    double meanLogRatio = 0;  // mean d (> 0: after is better)
+    double t = 0;
+    double pValue = 1;        // one-sided, t-test
+    double exactP = 1;        // one-sided, sign-flip permutation test: P(S ≥ s)
+    double midP = 1;          // the same test's mid-p: P(S > s) + ½ P(S = s)
+};
+PairedTest pairedLogRatioTest(const std::vector<double>& before, const std::vector<double>& after);
+
 // Jackknife standard error of an estimate from its K leave-one-out values θ_(i):
 // sqrt((K−1)/K Σ (θ_(i) − θ̄)²) (Efron & Tibshirani, ch. 11). NaN when K < 2.
 double jackknifeStderr(const std::vector<double>& leaveOneOut);
 
-// Phase-locked structure of the runs' residuals (PhaseLocked above). Each cycle's own mean is
-// removed first, so slow drifts (wear, coloured noise far below the forcing frequency) are not
-// counted. Phase bins are `samplesPerBin` (>= 1) samples wide. With band_Hz > 0 (below 0.45 of
-// the sample rate) the phase means are those of the residual low-passed at band_Hz (zero-phase
-// Butterworth, order 4), so structure above it (the measurement chain's own, at slip onsets) is
-// not counted; the gain is always judged against the whole residual. The forcing frequency is
-// the run's, else estimated from its reversals (forcingFrequencyOf).
-PhaseLocked phaseLockedStructure(const std::vector<DiagnosticRun>& runs, int samplesPerBin, double stickVelocity_mps,
-                                 double band_Hz = 0);
-
 // All diagnostics. The residual is decimated by `decimation` (≥ 1) before the whiteness test
 // so that the smoothing of the measurement chain (a 100 Hz low-pass at 1 kHz correlates
 // neighbouring samples) is not mistaken for model structure.
-// band_Hz: the phase-locked structure's band (phaseLockedStructure).
-Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation = 5, double stickVelocity_mps = 1e-3,
-                     double band_Hz = 0);
+Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation = 5, double stickVelocity_mps = 1e-3);
 
 }  // namespace stickslip::identify

@@ -315,14 +315,23 @@ void finishReport(Loop& L) {
     res.final = L.cur.estimates;  // effect parameters under "effect.param" names
     std::vector<std::vector<double>> predAfter;
     res.diagnosticsAfter = diagnoseModel(L.cx, L.spec, L.cur, &predAfter);
-    res.unexplained = phaseLockedUnexplained(L.opt, res.diagnosticsAfter, res.unexplainedReason);
+    res.unexplained = res.diagnosticsAfter.whiteness.structured;
     if (!L.spec.segments) {
         double mass = kNaN;
         res.lawResolution = checkLawResolution(L.cx, buildModel(L.cx, L.spec, L.cur.values, mass), mass,
                                                kLawResolutionRefinement);
     }
     if (res.unexplained) {
-        res.unexplainedReason += "; no catalogue candidate lowered the penalised and held-out error further";
+        const auto& cs = res.diagnosticsAfter.correlations;
+        auto top = std::max_element(cs.begin(), cs.end(), [](const auto& a, const auto& b) {
+            return std::abs(a.correlation) < std::abs(b.correlation);
+        });
+        res.unexplainedReason = "residual is not white after the loop (Ljung-Box p = " +
+                                fmt(res.diagnosticsAfter.whiteness.pValue) + ") and the structure is large (variance / "
+                                "successive-difference noise variance - 1 = " +
+                                fmt(res.diagnosticsAfter.whiteness.structureRatio) + "); largest correlation: " +
+                                (top != cs.end() ? top->signal + " r = " + fmt(top->correlation) : "none") +
+                                "; no catalogue candidate lowered the penalised and held-out error further";
         if (const std::string t = lawResolutionText(res.lawResolution); !t.empty()) res.unexplainedReason += "; " + t;
     }
     for (size_t i = 0; i < L.cx.runs.size(); ++i) {

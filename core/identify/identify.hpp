@@ -18,9 +18,8 @@
 // ε_T (ε_T and D_c scanned on log grids first, μ and the other coefficients started from the
 // data), m* and the rig's ζ within "very small" (effects/viscous_damping.hpp).
 // Candidate fits start from a scan of each log-scale effect parameter over its bounds.
-// "unexplained": the final residual repeats from forcing cycle to forcing cycle below
-// IdentifyOptions::structureBand_Hz, consistently over the runs and above the relevance margin
-// (PhaseLocked in diagnostics.hpp, the verdict in identify_selection.cpp).
+// "unexplained": the final residual is not white (Ljung–Box) AND its slowly varying part is
+// large (Whiteness::structured in diagnostics.hpp).
 #pragma once
 
 #include <algorithm>
@@ -232,13 +231,6 @@ struct IdentifyOptions {
     // its step ends (Prepared::stepSlip) instead of the line between decimated samples.
     bool recordedStepSlip = true;
     double stickVelocity_mps = 5e-3; // |V| below this counts as stuck (dynamics channel, diagnostics)
-    // The "unexplained" verdict (item 5 of issue 14) judges the final residual's phase-locked
-    // structure (diagnostics.hpp, PhaseLocked) below this frequency, by the held-out test and
-    // the relevance margin above. 0: automatic, a quarter of the lowest cleaning low-pass cutoff
-    // of the runs or of the decimated Nyquist frequency, whichever is lower (25 Hz for the
-    // shared sets' 100 Hz low-pass): above it even the right model leaves the structure of the
-    // measurement chain at slip onsets (docs/identify-results.md, session 67).
-    double structureBand_Hz = 0;
     // Dynamics law channel: compare only sliding samples farther than the prediction filter's
     // memory (its DC group delay, rounded up: 3 samples at 500 Hz for the 100 Hz low-pass and 60 Hz
     // band-stop) from a stuck one. The filtered prediction is the measurement where the mask is

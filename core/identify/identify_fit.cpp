@@ -386,16 +386,6 @@ bool lawFitIsBetter(const FitOutcome& curveFit, const FitOutcome& lawFit) {
 
 bool neverMoved(const FitOutcome& f) { return f.ok && !(f.fit.cost < f.fit.initialCost * (1.0 - 1e-12)); }
 
-// IdentifyOptions::structureBand_Hz, or automatic: a quarter of the lowest cleaning low-pass
-// cutoff or of the Nyquist frequency at `rate_Hz`, whichever is lower.
-double structureBand(const Context& cx, double rate_Hz) {
-    if (cx.opt->structureBand_Hz > 0) return cx.opt->structureBand_Hz;
-    double edge = 0.5 * rate_Hz;
-    for (const Prepared& p : cx.runs)
-        if (p.run->filtered && p.run->filters.lowPass) edge = std::min(edge, p.run->filters.lowPass_Hz);
-    return 0.25 * edge;
-}
-
 // Diagnostics of a fitted model's force residual (friction channel, samples compared).
 Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds) {
     double mass = kNaN;
@@ -423,7 +413,7 @@ Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome&
     const double fs = cx.runs.empty() || cx.runs[0].size() < 2 ? 1.0 : 1.0 / (cx.runs[0].t[1] - cx.runs[0].t[0]);
     // Decimate to about 2× the 100 Hz measurement bandwidth before the whiteness test.
     const int dec = std::max(1, static_cast<int>(std::floor(fs / 200.0)));
-    Diagnostics d = diagnose(dr, dec, cx.opt->stickVelocity_mps, structureBand(cx, fs));
+    Diagnostics d = diagnose(dr, dec, cx.opt->stickVelocity_mps);
     if (cx.anyDynamics) {
         // Equation-of-motion channel: its residual against the slider velocity and acceleration
         // (where rig damping and sensor inertia show).

@@ -285,9 +285,6 @@ bool neverMoved(const FitOutcome& f);
 ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
                      const std::vector<size_t>& valIdx, long& fits,
                      std::vector<std::map<std::string, double>>* loo = nullptr);
-// The band of the phase-locked structure behind the "unexplained" verdict (IdentifyOptions::
-// structureBand_Hz) for residuals sampled at rate_Hz.
-double structureBand(const Context& cx, double rate_Hz);
 Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds);
 // The baseline's start: μ from the data (median |F|/t_N at the faster half of the slip rates) and
 // C1, η in proportion to the start law's; with `from`, every free law value from that law instead
@@ -346,15 +343,6 @@ std::string baselineTradeOff(const CandidateScore& sc, double maxVif);
 // The value of an effect's size parameter q at which the effect is absent in this data set's
 // model (q.vanishing, except where a baseline parameter covers part of the range).
 double effectVanishes(const Context& cx, const std::string& effect, const EffectParam& q);
-// The one-sided p of a paired test over runs as the selection judges it: the exact sign-flip
-// test where it can decide (2^-K < heldOutAlpha; its mid-p when opt.heldOutMidP), else the
-// t-test. `exactDecides` says which.
-double pairedTestP(const IdentifyOptions& opt, const PairedTest& pt, bool& exactDecides);
-// The "unexplained" verdict on a final model's diagnostics: its phase-locked structure
-// (diagnostics.hpp, PhaseLocked) passes the held-out test (pairedTestP < heldOutAlpha) and the
-// relevance margin (mean log ratio >= ln(1/(1 - minHeldOutGain))) over >= kMinUnitsForTests runs.
-// `why` then names the figures and the largest residual correlation; else it is cleared.
-bool phaseLockedUnexplained(const IdentifyOptions& opt, const Diagnostics& d, std::string& why);
 constexpr int kMinUnitsForTests = 3;  // runs needed for the paired test and the jackknife (≥ 2 degrees of freedom)
 bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fit, const ModelErrors& ref,
                      const ModelErrors& with, const std::vector<std::map<std::string, double>>& loo,

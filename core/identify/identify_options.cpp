@@ -34,7 +34,6 @@ ParamIssues IdentifyOptions::validate() const {
           "in [0, 20]");
     range("held_out_alpha", heldOutAlpha, heldOutAlpha > 0 && heldOutAlpha < 1, "in (0, 1)");
     range("min_held_out_gain", minHeldOutGain, minHeldOutGain >= 0 && minHeldOutGain < 1, "in [0, 1)");
-    range("structure_band_Hz", structureBand_Hz, structureBand_Hz >= 0 && std::isfinite(structureBand_Hz), ">= 0 (0: automatic)");
     range("identifiability_alpha", identifiabilityAlpha, identifiabilityAlpha > 0 && identifiabilityAlpha < 1, "in (0, 1)");
     for (const ParamIssue& i : selfTest.validate()) out.push_back(i);
     return out;

@@ -12,11 +12,6 @@ namespace stickslip::identify {
 namespace {
 
 nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-nlohmann::json nums(const std::vector<double>& v) {
-    nlohmann::json a = nlohmann::json::array();
-    for (double x : v) a.push_back(num(x));
-    return a;
-}
 
 nlohmann::json toJson(const std::vector<ParamEstimate>& ps) {
     nlohmann::json j = nlohmann::json::object();
@@ -51,16 +46,6 @@ nlohmann::json toJson(const Diagnostics& d, bool withSeries) {
                           {"structure_ratio", num(d.whiteness.structureRatio)},
                           {"structure_ratio_limit", Whiteness::kStructureRatioLimit},
                           {"structured", d.whiteness.structured}}},
-                        {"phase_locked",
-                         {{"runs", d.phaseLocked.runs},
-                          {"run_log_ratios", nums(d.phaseLocked.runLogRatio)},
-                          {"bins_per_cycle", d.phaseLocked.binsPerCycle},
-                          {"band_Hz", num(d.phaseLocked.band_Hz)},
-                          {"mean_log_ratio", num(d.phaseLocked.meanLogRatio)},
-                          {"share", num(d.phaseLocked.share)},
-                          {"t", num(d.phaseLocked.test.t)},
-                          {"exact_p", num(d.phaseLocked.test.exactP)},
-                          {"mid_p", num(d.phaseLocked.test.midP)}}},
                         {"integrated_acf_time_samples", num(d.integratedAcfTime)},
                         {"spectrum_harmonic_fraction", num(d.spectrum.harmonicFraction)},
                         {"forcing_harmonics_Hz", d.spectrum.harmonics_Hz}};

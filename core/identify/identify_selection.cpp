@@ -138,11 +138,11 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
     // (mid-p 1/64). Not at K = 4, where the mid-p of "all four better" (1/32) would pass a pattern
     // whose null probability is 1/16: measured with four of the five runs of the shared sets, it
     // found D03's lag but added a false sensor mass on D09 (docs/identify-results.md, session 61).
-    bool exactDecides = false;
-    sc.heldOutP = pairedTestP(opt, pt, exactDecides);
+    const bool exactDecides = pt.units >= 1 && std::isfinite(pt.exactP) && std::ldexp(1.0, -pt.units) < opt.heldOutAlpha;
     sc.heldOutExact = exactDecides;
     sc.heldOutMidP = exactDecides && opt.heldOutMidP;
     sc.heldOutExactP = pt.exactP;
+    sc.heldOutP = !exactDecides ? pt.pValue : opt.heldOutMidP ? pt.midP : pt.exactP;
     // With fewer than 3 held-out runs the paired t-test has at most one degree of freedom (the
     // spread of two log ratios; t_{0.95,1} = 6.31) and no power: every held-out run must then
     // improve instead (a weaker guard, reported as such).
@@ -168,32 +168,6 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
 }
 
 }  // namespace
-
-double pairedTestP(const IdentifyOptions& opt, const PairedTest& pt, bool& exactDecides) {
-    exactDecides = pt.units >= 1 && std::isfinite(pt.exactP) && std::ldexp(1.0, -pt.units) < opt.heldOutAlpha;
-    return !exactDecides ? pt.pValue : opt.heldOutMidP ? pt.midP : pt.exactP;
-}
-
-bool phaseLockedUnexplained(const IdentifyOptions& opt, const Diagnostics& d, std::string& why) {
-    const PhaseLocked& pl = d.phaseLocked;
-    why.clear();
-    if (pl.runs < kMinUnitsForTests) return false;
-    bool exact = false;
-    const double p = pairedTestP(opt, pl.test, exact);
-    if (!(p < opt.heldOutAlpha) || !(pl.meanLogRatio >= std::log(1.0 / (1.0 - opt.minHeldOutGain)))) return false;
-    const auto& cs = d.correlations;
-    const auto top = std::max_element(cs.begin(), cs.end(), [](const auto& a, const auto& b) {
-        return std::abs(a.correlation) < std::abs(b.correlation);
-    });
-    why = "the residual repeats from forcing cycle to forcing cycle: its phase means" +
-          (pl.band_Hz > 0 ? " below " + fmt(pl.band_Hz, "%.3g") + " Hz" : std::string()) +
-          ", taken from the other cycles, predict " + fmt(100.0 * pl.share, "%.1f") +
-          " % of the residual's mean square in each cycle (over " + std::to_string(pl.runs) + " runs, one-sided p = " +
-          fmt(p) + (exact ? (opt.heldOutMidP ? ", exact sign-flip mid-p" : ", exact sign-flip test") : ", paired t-test") +
-          "; relevance margin " + fmt(100.0 * opt.minHeldOutGain, "%g") + " %); largest correlation: " +
-          (top != cs.end() ? top->signal + " r = " + fmt(top->correlation) : std::string("none"));
-    return true;
-}
 
 // Test (3): the size parameter is identified away from the value at which the effect vanishes.
 bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit,

@@ -142,12 +142,11 @@ void writeSummary(std::ostream& o, const IdentifyResult& r) {
     if (r.unexplained)
         o << "<p class=\"warn\">Unexplained structure remains: " << htmlEscape(r.unexplainedReason) << "</p>\n";
     else
-        o << "<p>No unexplained structure found: " << (r.diagnosticsAfter.phaseLocked.runs < 3 ? "too few runs of three whole cycles or more to judge; " : "")
-          << "the final residual's phase means below "
-          << fmt(r.diagnosticsAfter.phaseLocked.band_Hz, "%.3g") << " Hz, taken from the other forcing cycles, predict "
-          << fmt(100.0 * r.diagnosticsAfter.phaseLocked.share, "%.1f") << " % of its mean square in each cycle ("
-          << r.diagnosticsAfter.phaseLocked.runs << " runs, sign-flip mid-p " << fmt(r.diagnosticsAfter.phaseLocked.test.midP)
-          << "): below the relevance margin of " << fmt(100.0 * r.minHeldOutGain, "%g") << " % or not consistent over the runs.</p>\n";
+        o << "<p>No unexplained structure: the final residual is white (Ljung&ndash;Box p = "
+          << fmt(r.diagnosticsAfter.whiteness.pValue) << ") or its slowly varying part is small (variance / "
+             "successive-difference noise variance &minus; 1 = "
+          << fmt(r.diagnosticsAfter.whiteness.structureRatio, "%.3f") << " &le; " << Whiteness::kStructureRatioLimit
+          << ").</p>\n";
     if (const std::string t = lawResolutionText(r.lawResolution); !t.empty() && !r.unexplained)
         o << "<p class=\"warn\">Numerical resolution: " << htmlEscape(t) << ".</p>\n";
     o << "<table><tr><th></th><th>fit NRMSE</th><th>held-out NRMSE</th></tr>"
@@ -231,9 +230,7 @@ void writeDiagnostics(std::ostream& o, const IdentifyResult& r) {
     o << "</table><p>Ljung&ndash;Box p before " << fmt(r.diagnosticsBefore.whiteness.pValue) << ", after "
       << fmt(r.diagnosticsAfter.whiteness.pValue) << "; structure ratio before "
       << fmt(r.diagnosticsBefore.whiteness.structureRatio, "%.3f") << ", after "
-      << fmt(r.diagnosticsAfter.whiteness.structureRatio, "%.3f") << "; phase-locked share before "
-      << fmt(100.0 * r.diagnosticsBefore.phaseLocked.share, "%.1f") << " %, after "
-      << fmt(100.0 * r.diagnosticsAfter.phaseLocked.share, "%.1f") << " %.</p>\n";
+      << fmt(r.diagnosticsAfter.whiteness.structureRatio, "%.3f") << ".</p>\n";
     {
         std::vector<SvgSeries> acf;
         for (const auto* d : {&r.diagnosticsBefore, &r.diagnosticsAfter}) {

@@ -2,7 +2,6 @@
 #include <QtTest/QtTest>
 
 #include <cmath>
-#include <functional>
 #include <random>
 
 #include "core/identify/diagnostics.hpp"
@@ -16,32 +15,6 @@ std::vector<double> whiteNoise(size_t n, unsigned seed) {
     std::vector<double> x(n);
     for (double& v : x) v = nd(rng);
     return x;
-}
-
-// Runs at 500 Hz, forcing f, `cycles` cycles: the residual is noise (white, or AR(1) with
-// coefficient ar) plus a phase-locked signal sig(phase) and a random walk of step `walk`.
-std::vector<DiagnosticRun> phaseRuns(int runs, double f, int cycles, double ar, double walk,
-                                     const std::function<double(double)>& sig, unsigned seed) {
-    std::vector<DiagnosticRun> out;
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> nd(0.0, 1.0);
-    for (int k = 0; k < runs; ++k) {
-        DiagnosticRun r;
-        const size_t n = static_cast<size_t>(std::round(cycles / f * 500.0)) + 1;
-        double e = 0, w = 0;
-        for (size_t i = 0; i < n; ++i) {
-            const double t = static_cast<double>(i) / 500.0;
-            e = ar * e + std::sqrt(1.0 - ar * ar) * nd(rng);
-            w += walk * nd(rng);
-            const double ph = t * f - std::floor(t * f);
-            r.t_s.push_back(t);
-            r.relVel_mps.push_back(std::cos(2.0 * M_PI * f * t));
-            r.residual.push_back(e + w + sig(ph));
-        }
-        r.forcingFrequency_Hz = f;
-        out.push_back(std::move(r));
-    }
-    return out;
 }
 }  // namespace
 
@@ -257,62 +230,6 @@ private slots:
     // "structured" = not white AND large: white noise gives a ratio near 0; a small slow model
     // error that Ljung–Box already flags (p ≈ 0) but that carries far less variance than the
     // noise is not structured; a model error as large as the noise is.
-    void forcingFrequencyGivenOrFromReversals() {
-        DiagnosticRun r;
-        for (int i = 0; i <= 4000; ++i) {
-            const double t = i / 1000.0;  // 4 s of a 2.5 Hz motion: 20 reversals
-            r.t_s.push_back(t);
-            r.relVel_mps.push_back(std::cos(2.0 * M_PI * 2.5 * t + 0.3));
-        }
-        QVERIFY(std::abs(forcingFrequencyOf(r, 1e-3) - 2.5) < 0.05);
-        r.forcingFrequency_Hz = 3.0;
-        QCOMPARE(forcingFrequencyOf(r, 1e-3), 3.0);
-        QCOMPARE(forcingFrequencyOf(DiagnosticRun{}, 1e-3), 1.0);
-    }
-    void phaseLockedShareOfAKnownSignature() {
-        // A signature of variance 1 (a sine of amplitude sqrt 2) on white noise of variance 1:
-        // the other cycles predict half the mean square of each, less the predictor's own
-        // noise, in every run (mid-p 1/64 of 5 runs).
-        auto sig = [](double ph) { return std::sqrt(2.0) * std::sin(2.0 * M_PI * ph); };
-        const PhaseLocked pl = phaseLockedStructure(phaseRuns(5, 3.0, 60, 0.0, 0.0, sig, 1), 2, 1e-3);
-        QCOMPARE(pl.runs, 5);
-        QVERIFY2(std::abs(pl.share - 0.5) < 0.05, qPrintable(QString::number(pl.share)));
-        QCOMPARE(pl.test.midP, 1.0 / 64.0);
-        for (double g : pl.runLogRatio) QVERIFY(g > 0.5);
-        for (int b : pl.binsPerCycle) QCOMPARE(b, 83);  // 500/3 samples per cycle, 2 per bin
-    }
-    void phaseLockedIgnoresNoiseColourAndDrift() {
-        // White noise, strongly coloured noise (AR(1), 0.95 at 500 Hz) and a random walk repeat at
-        // no phase: their share stays near 0 (slightly below: the predictor's own noise) and
-        // the runs do not agree on a gain.
-        auto none = [](double) { return 0.0; };
-        for (const auto& [ar, walk] : {std::pair{0.0, 0.0}, std::pair{0.95, 0.0}, std::pair{0.0, 0.05}}) {
-            const PhaseLocked pl = phaseLockedStructure(phaseRuns(5, 3.0, 60, ar, walk, none, 7), 2, 1e-3);
-            QVERIFY2(std::abs(pl.share) < 0.03, qPrintable(QString("ar %1 walk %2: %3").arg(ar).arg(walk).arg(pl.share)));
-            QVERIFY2(!(pl.meanLogRatio > std::log(1.0 / 0.95)), qPrintable(QString::number(pl.meanLogRatio)));
-        }
-    }
-    void phaseLockedBandLeavesOutFastStructure() {
-        // A phase-locked 60th harmonic of 2 Hz (120 Hz) is counted with the whole residual and
-        // not below a 25 Hz band; a 3rd harmonic (6 Hz) is counted either way.
-        auto fast = [](double ph) { return std::sin(2.0 * M_PI * 60.0 * ph); };
-        auto slow = [](double ph) { return std::sin(2.0 * M_PI * 3.0 * ph); };
-        const auto fr = phaseRuns(5, 2.0, 40, 0.0, 0.0, fast, 3);
-        const double whole = phaseLockedStructure(fr, 1, 1e-3).share;
-        QVERIFY2(whole > 0.25, qPrintable(QString::number(whole)));  // 1/3 less the predictor noise
-        const PhaseLocked banded = phaseLockedStructure(fr, 1, 1e-3, 25.0);
-        QVERIFY2(std::abs(banded.share) < 0.03, qPrintable(QString::number(banded.share)));
-        QCOMPARE(banded.band_Hz, 25.0);
-        const auto sr = phaseRuns(5, 2.0, 40, 0.0, 0.0, slow, 3);
-        QVERIFY(phaseLockedStructure(sr, 1, 1e-3, 25.0).share > 0.25);
-    }
-    void phaseLockedSkipsShortRuns() {
-        const auto runs = phaseRuns(2, 3.0, 2, 0.0, 0.0, [](double) { return 0.0; }, 5);  // 2 cycles < 3
-        const PhaseLocked pl = phaseLockedStructure(runs, 2, 1e-3);
-        QCOMPARE(pl.runs, 0);
-        QCOMPARE(pl.binsPerCycle, std::vector<int>({0, 0}));
-        QVERIFY(std::isnan(pl.runLogRatio[0]));
-    }
     void structureRatioMeasuresTheSizeOfTheStructure() {
         std::vector<DiagnosticRun> runs(2);
         const auto noise = whiteNoise(8000, 5);
