@@ -157,7 +157,7 @@ FitOutcome runFitJob(const FitRequest& request, const std::atomic<bool>* cancel,
     std::vector<identify::DatasetFit> fits;
     identify::PipelineStatus status;
     if (!identify::fitLaws(fitRuns, valRuns, st, request.laws, fits, status, {}, fitted) &&
-        !(stickslip::cancelRequested(cancel))) {
+        !stickslip::cancelRequested(cancel)) {
         out.message = QString::fromStdString(status.message);
         out.elapsed_ms = msSince(clock);
         return out;
@@ -209,7 +209,7 @@ IdentifyOutcome runIdentifyJob(const IdentifyRequest& request, const std::atomic
     };
     out.result = identifyEffects(std::move(runs), opt);
     out.elapsed_ms = msSince(clock);
-    out.cancelled = out.result.cancelled || (stickslip::cancelRequested(cancel));
+    out.cancelled = out.result.cancelled || stickslip::cancelRequested(cancel);
     out.ok = out.result.ok && !out.cancelled;
     if (out.cancelled) out.message = QStringLiteral("cancelled");
     else if (!out.ok) out.message = QString::fromStdString(out.result.message);

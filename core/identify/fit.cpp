@@ -288,7 +288,7 @@ ceres::Solver::Summary solveFrom(const FitProblem& prob, const Mapping& map, Poi
     const std::vector<double> z0 = z;
     ceres::Solver::Summary first = solveOnce(prob, map, evaluator, z, s, {});
     if (first.IsSolutionUsable()) first.final_cost = costAt(prob, evaluator, z);
-    if (z != z0 || !first.IsSolutionUsable() || (cancelRequested(prob.cancel))) return first;
+    if (z != z0 || !first.IsSolutionUsable() || cancelRequested(prob.cancel)) return first;
     std::vector<int> held;
     for (size_t k = 0; k < z0.size(); ++k) {
         const double tol = 1e-12 * std::max(1.0, std::abs(z0[k]));
