@@ -243,6 +243,15 @@ struct IdentifyOptions {
     // frictional_lag (held-out sign-flip p 0.0625, four of five runs better) and fit's D05 start
     // moves (docs/fit-results.md, session 41); not yet a net gain on every set.
     bool maskEdgeGuard = false;
+    // Dynamics law channel: the prediction is the model's whole force through the cleaning
+    // filters, with the equation of motion's force ((m + m_s) a + c ẋ + k x, the model's own)
+    // where the contact is stuck, instead of F + filter(mask·(y − F)), so that next to each slip
+    // onset and stop it is the model's on both sides of the mask edge and every sliding sample
+    // stays compared (the edge guard's aim without dropping the samples where a sensor mass
+    // shows). Off by default: it recovers the law on a noise-free set and at 0.1× the noise, not
+    // at 0.3× or 1× (where the guard does), and the shared sets are 16 of 18 exact with it (D09's
+    // lag named a load effect, D18's healing missed) (docs/identify-results.md, session 69).
+    bool stickRigPrediction = false;
     int multistarts = 2;
     // The solver's Jacobian while it iterates (fit.hpp, JacobianKind): forward differences by
     // default, about half the cost of every fit of the loop; central is the slower option, the

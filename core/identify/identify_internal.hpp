@@ -55,6 +55,18 @@ struct Prepared {
         for (size_t i = 0; i < y.size(); ++i) d[i] += F[i];
         return d;
     }
+    // The model's whole force through the cleaning filters, with the model's own force where the
+    // mask is off (`outside`, e.g. the equation of motion's in stick): filter(y·mask + outside·(1 −
+    // mask)), as the cleaned measurement is filter(raw). F + filter(y − F) above differs from it by
+    // F − filter(F), which is not zero next to every slip onset and stop, where the cleaned force
+    // bends faster than the filter passes (IdentifyOptions::stickRigPrediction).
+    std::vector<double> filtered(const std::vector<double>& y, const std::vector<char>& mask,
+                                 const std::vector<double>& outside) const {
+        if (predictionFilter.empty()) return y;
+        std::vector<double> d(y.size(), 0.0);
+        for (size_t i = 0; i < y.size(); ++i) d[i] = mask[i] ? y[i] : outside[i];
+        return dsp::filtfiltZeroExtended(predictionFilter, d);
+    }
     // Dynamics, segment residual: smoothed slider state, cleaned stage motion, slip so far,
     // segments [first, last] of samples (each starts mid-slide).
     std::vector<double> xs, vs, u, Vs, cumSlip;

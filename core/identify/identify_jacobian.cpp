@@ -49,31 +49,40 @@ bool runJacobian(const Context& cx, const Spec& spec, const Prepared& p, const E
         std::copy(rr.begin(), rr.end(), r->begin() + static_cast<long>(off));
     }
     const Eigen::Index o = static_cast<Eigen::Index>(off);
-    // The law channel: (filtered(measured) − F)/rms, filtered(y) = F + filter(mask·(y − F))
-    // (Prepared::filtered) is affine in y, so its derivative is filter(mask·∂y).
-    std::vector<double> d(n);
-    for (size_t c = 0; c < lawNames.size(); ++c) {
-        for (size_t i = 0; i < n; ++i) d[i] = (!dyn || p.slides[i]) ? dM(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) : 0.0;
-        if (!p.predictionFilter.empty()) d = dsp::filtfiltZeroExtended(p.predictionFilter, d);
-        for (size_t i = 0; i < n; ++i)
-            J(o + static_cast<Eigen::Index>(i), lawCols[c]) = (!dyn || p.compared[i]) ? d[i] * p.invRmsF : 0.0;
-    }
-    if (!dyn) return true;
-    // The equation of motion: ((m + m_s) a + c ẋ + k x − F)/rms with c = 2 ζ √(k m).
+    // The equation of motion ((m + m_s) a + c ẋ + k x, c = 2 ζ √(k m)): its derivative per column.
     const double mm = std::isfinite(mass) ? mass : run.nominalMass_kg;
     const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
     const double k = run.stiffness_N_per_m;
-    const Eigen::Index e = o + static_cast<Eigen::Index>(n);
+    auto rigDerivative = [&](size_t j, size_t i) {
+        if (!dyn) return 0.0;
+        if (how[j] == Enters::Mass) return p.a[i] + zeta * std::sqrt(k / mm) * p.xd[i];
+        if (how[j] == Enters::RigDamping) return 2.0 * std::sqrt(k * mm) * p.xd[i];
+        if (names[j] == "sensor_inertia.mass_kg") return p.a[i];
+        return 0.0;
+    };
+    // The law channel: (filtered(measured) − F)/rms, filtered(y) = F + filter(mask·(y − F)) or,
+    // with stickRigPrediction, F + filter(mask·y + (1 − mask)·rig − F) (Prepared::filtered): affine
+    // in y and rig, so its derivative is the filtered derivative of what the mask picks.
+    const bool rigInStick = dyn && cx.opt->stickRigPrediction;
+    std::vector<Eigen::Index> lawColOf(names.size(), -1);
+    for (size_t c = 0; c < lawCols.size(); ++c) lawColOf[static_cast<size_t>(lawCols[c])] = static_cast<Eigen::Index>(c);
+    std::vector<double> d(n);
     for (size_t j = 0; j < names.size(); ++j) {
-        const Eigen::Index c = static_cast<Eigen::Index>(j);
+        const Eigen::Index lc = lawColOf[j];
+        if (lc < 0 && !rigInStick) continue;
         for (size_t i = 0; i < n; ++i) {
-            double v = 0.0;
-            if (how[j] == Enters::Mass) v = p.a[i] + zeta * std::sqrt(k / mm) * p.xd[i];
-            else if (how[j] == Enters::RigDamping) v = 2.0 * std::sqrt(k * mm) * p.xd[i];
-            else if (names[j] == "sensor_inertia.mass_kg") v = p.a[i];
-            J(e + static_cast<Eigen::Index>(i), c) = v * p.invRmsF;
+            if (!dyn || p.slides[i]) d[i] = lc >= 0 ? dM(static_cast<Eigen::Index>(i), lc) : 0.0;
+            else d[i] = rigInStick ? rigDerivative(j, i) : 0.0;
         }
+        if (!p.predictionFilter.empty()) d = dsp::filtfiltZeroExtended(p.predictionFilter, d);
+        for (size_t i = 0; i < n; ++i)
+            J(o + static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = (!dyn || p.compared[i]) ? d[i] * p.invRmsF : 0.0;
     }
+    if (!dyn) return true;
+    const Eigen::Index e = o + static_cast<Eigen::Index>(n);
+    for (size_t j = 0; j < names.size(); ++j)
+        for (size_t i = 0; i < n; ++i)
+            J(e + static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rigDerivative(j, i) * p.invRmsF;
     return true;
 }
 

@@ -236,10 +236,14 @@ bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, 
     // (elastic loading over ε_T, play, healing), so a compliant contact, a dead band or a
     // healed strength shape the force after each reversal; inside stick the measured slip's
     // noise times ε_T would swamp the comparison, and there the rig channel speaks instead.
-    const std::vector<double> Fp = p.filtered(measured, &p.slides);
     const double mm = std::isfinite(mass) ? mass : run.nominalMass_kg;
     const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
     const double c = 2.0 * zeta * std::sqrt(run.stiffness_N_per_m * mm);
+    // The equation of motion's force: what the model says the sensor shows in stick.
+    std::vector<double> rig(n);
+    for (size_t i = 0; i < n; ++i) rig[i] = (mm + ms) * p.a[i] + c * p.xd[i] + run.stiffness_N_per_m * p.x[i];
+    const std::vector<double> Fp = cx.opt->stickRigPrediction ? p.filtered(measured, p.slides, rig)
+                                                              : p.filtered(measured, &p.slides);
     for (size_t i = 0; i < n; ++i) {
         double e = 0;
         const bool compared = p.compared[i];
@@ -254,8 +258,7 @@ bool runResiduals(const Context& cx, const Prepared& p, const ExtendedModel& m, 
         if (used) (*used)[i] = compared;
     }
     for (size_t i = 0; i < n; ++i) {
-        const double fm = (mm + ms) * p.a[i] + c * p.xd[i] + run.stiffness_N_per_m * p.x[i];
-        const double e = (fm - p.F[i]) * p.invRmsF;
+        const double e = (rig[i] - p.F[i]) * p.invRmsF;
         r.push_back(e);
         ss += e * e;
         count += 1;

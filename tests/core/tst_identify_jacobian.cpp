@@ -96,10 +96,20 @@ private slots:
         if (!effect.isEmpty()) spec.effects.push_back(effect.toStdString());
         checkAgainstDifferences(cx, spec, {0, 1, 2, 3});
     }
-    void dynamicsMatchesDifferences_data() { prescribedMatchesDifferences_data(); }
+    void dynamicsMatchesDifferences_data() {
+        QTest::addColumn<QString>("effect");
+        QTest::addColumn<bool>("stickRig");
+        for (const QString& e : catalogue())
+            for (bool rig : {false, true}) {
+                const QString name = (e.isEmpty() ? QStringLiteral("baseline") : e) + (rig ? "/stick-rig" : "");
+                QTest::newRow(qPrintable(name)) << e << rig;
+            }
+    }
     void dynamicsMatchesDifferences() {
         QFETCH(QString, effect);
+        QFETCH(bool, stickRig);
         IdentifyOptions opt;
+        opt.stickRigPrediction = stickRig;  // stuck samples' prediction from the equation of motion
         std::vector<IdentifyRun> runs;
         Context cx;
         QVERIFY(prepareD05(2, 2.0, opt, runs, cx));

@@ -94,6 +94,35 @@ private slots:
         QCOMPARE(p.compared, (std::vector<char>{0, 0, 0, 1, 1, 0, 0, 0, 0, 0}));
     }
 
+    // Prepared::filtered with the model's force where the mask is off (stickRigPrediction): an
+    // exact model's prediction is the cleaned measurement on every sample, edges included. The
+    // anchored form F + filter(mask·(y − F)) is not: it adds F − filter(F) where F bends fast.
+    void filteredWholeModelIsTheCleanedMeasurementForAnExactModel() {
+        Prepared p;
+        const size_t n = 400;
+        std::vector<double> raw(n);
+        p.slides.assign(n, 0);
+        for (size_t i = 0; i < n; ++i) {
+            const double t = static_cast<double>(i) / 500.0;
+            p.slides[i] = (i / 50) % 2;  // stick and slip in turns, each 0.1 s
+            raw[i] = p.slides[i] ? 1.0 + 0.3 * std::sin(40.0 * t) : 0.2 * std::sin(6.0 * t);  // force jumps at each edge
+        }
+        p.predictionFilter = dsp::butterworthLowpass(4, 100.0, 500.0);
+        p.F = dsp::filtfiltZeroExtended(p.predictionFilter, raw);  // the cleaned measurement
+        const std::vector<double> whole = p.filtered(raw, p.slides, raw);
+        double worstWhole = 0, worstAnchored = 0;
+        const std::vector<double> anchored = p.filtered(raw, &p.slides);
+        for (size_t i = 0; i < n; ++i) {
+            worstWhole = std::max(worstWhole, std::abs(whole[i] - p.F[i]));
+            if (p.slides[i]) worstAnchored = std::max(worstAnchored, std::abs(anchored[i] - p.F[i]));
+        }
+        qInfo("largest |prediction − F|: whole model %.2e, anchored %.2e", worstWhole, worstAnchored);
+        QVERIFY2(worstWhole < 1e-12, qPrintable(QString::number(worstWhole)));
+        QVERIFY2(worstAnchored > 1e-3, qPrintable(QString::number(worstAnchored)));  // next to the edges
+        p.predictionFilter.clear();  // no cleaning: the prediction is the model's force itself
+        QCOMPARE(p.filtered(raw, p.slides, std::vector<double>(n, 7.0)), raw);
+    }
+
     // D16 (session 6): every leave-one-run-out refit of a candidate failed, its held-out error
     // was NaN, and the NaN slipped past the held-out comparison: the candidate was added.
     void noHeldOutErrorIsNoEvidence() {
