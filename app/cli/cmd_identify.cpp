@@ -153,9 +153,9 @@ void addIdentifyCommand(CLI::App& root, int& exitCode) {
                "memory (its DC group delay) from a stuck one, where the filtered prediction is not a blend of model "
                "and measurement (off by default)");
     twoWayFlag("--stick-rig-prediction", "--no-stick-rig-prediction", o->req.options.stickRigPrediction,
-               "dynamics: where the contact is stuck, filter the equation of motion's force into the law channel's "
-               "prediction instead of the cleaned measurement, so the prediction next to slip onsets and stops is the "
-               "model's on both sides (off by default)");
+               "dynamics: predict the law channel as the model's whole force through the cleaning filters, with the "
+               "equation of motion's force where the contact is stuck instead of the cleaned measurement, so the "
+               "prediction next to slip onsets and stops is the model's on both sides (off by default)");
     twoWayFlag("--null-numerics", "--no-null-numerics", o->req.options.nullNumerics,
                "the noise replicas also carry the residual's numerical part (the residual minus that of the same model "
                "predicted from every recorded sample, or with 4x the law steps, refitted to the same samples), so an "

@@ -61,8 +61,8 @@ bool runJacobian(const Context& cx, const Spec& spec, const Prepared& p, const E
         return 0.0;
     };
     // The law channel: (filtered(measured) − F)/rms, filtered(y) = F + filter(mask·(y − F)) or,
-    // with stickRigPrediction, F + filter(mask·y + (1 − mask)·rig − F) (Prepared::filtered): affine
-    // in y and rig, so its derivative is the filtered derivative of what the mask picks.
+    // with stickRigPrediction, filter(mask·y + (1 − mask)·rig) (Prepared::filtered): affine in y
+    // and rig, so its derivative is the filtered derivative of what the mask picks.
     const bool rigInStick = dyn && cx.opt->stickRigPrediction;
     std::vector<Eigen::Index> lawColOf(names.size(), -1);
     for (size_t c = 0; c < lawCols.size(); ++c) lawColOf[static_cast<size_t>(lawCols[c])] = static_cast<Eigen::Index>(c);
