@@ -55,6 +55,7 @@ void addInputOptions(Setters<Req>& s) {
     s.insert(fn<Req>("trim_start", [](Req& r, py::handle v) { r.cleaning.pre.trim.start_s = v.cast<double>(); }));
     s.insert(fn<Req>("trim_end", [](Req& r, py::handle v) { r.cleaning.pre.trim.end_s = v.cast<double>(); }));
     s.insert(fn<Req>("stage_harmonics", [](Req& r, py::handle v) { r.cleaning.pre.stageFourierOrder = v.cast<int>(); }));
+    s.insert(fn<Req>("fuse_slider_acceleration", [](Req& r, py::handle v) { r.cleaning.pre.fuseSliderAcceleration = v.cast<bool>(); }));
     s.insert(fn<Req>("free", [](Req& r, py::handle v) {
         if (py::isinstance<py::str>(v)) r.free = v.cast<std::string>();
         else { r.free.clear(); for (const auto& n : stringList(v, "free")) r.free += (r.free.empty() ? "" : ",") + n; }

@@ -70,6 +70,8 @@ void addCleaningOptions(CLI::App* cmd, identify::CleaningOptions& c) {
     cmd->add_option("--trim-end", c.pre.trim.end_s, "drop this many seconds at the end [s]");
     cmd->add_option("--stage-harmonics", c.pre.stageFourierOrder,
                     "dynamics: stage input = Fourier fit with this many harmonics (0 = measured)")->capture_default_str();
+    cmd->add_flag("--fuse-slider-acceleration", c.pre.fuseSliderAcceleration,
+                  "dynamics: slider displacement and velocity from slider_disp and slider_accel together (Rauch-Tung-Striebel smoother, noise levels estimated per run)");
     cmd->add_flag("--no-steady-trim", c.noSteadyTrim, "keep ramps (do not trim to the steady drive amplitude)");
 }
 

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "../dsp/fourier.hpp"
+#include "../dsp/kinematic_smoother.hpp"
 #include "../dsp/sampling.hpp"
 #include "../dsp/savitzky_golay.hpp"
 #include "../dsp/stats.hpp"
@@ -43,6 +45,7 @@ nlohmann::json toJson(const PreprocessSettings& s) {
     j["resample_if_irregular"] = s.resample;
     j["savitzky_golay"] = {{"window", 2 * s.sgHalfWindow + 1}, {"order", s.sgOrder}};
     j["stage_fourier_order"] = s.stageFourierOrder;
+    j["fuse_slider_acceleration"] = s.fuseSliderAcceleration;
     j["trim"] = {{"start_s", s.trim.start_s}, {"end_s", s.trim.end_s}, {"steady_amplitude", s.trim.steadyAmplitude},
                  {"amplitude_fraction", s.trim.amplitudeFraction}};
     return j;
@@ -76,6 +79,28 @@ bool makeUniform(const io::Run& raw, const PreprocessSettings& s, CleanRun& c, s
     c.resampled = true;
     c.notes.push_back("resampled to a uniform step of " + std::to_string(c.dt_s) + " s");
     return true;
+}
+
+// Step 1b (opt-in): slider displacement and velocity from the raw displacement and
+// acceleration, before the filters colour their noise (its level is estimated on them).
+void fuseSliderKinematics(CleanRun& c) {
+    io::Run& r = c.run;
+    if (!r.has(Signal::SliderDisp) || !r.has(Signal::SliderAccel)) {
+        c.notes.push_back("slider acceleration fusion skipped: needs slider_disp and slider_accel");
+        return;
+    }
+    const dsp::KinematicEstimate k = dsp::smoothKinematics(r[Signal::SliderDisp], r[Signal::SliderAccel], c.dt_s);
+    if (!k.ok) {
+        c.notes.push_back("slider acceleration fusion skipped: " + k.message);
+        return;
+    }
+    const bool velMeasured = r.has(Signal::SliderVel);
+    r[Signal::SliderDisp] = k.x;
+    if (!velMeasured) r[Signal::SliderVel] = k.v;
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "slider_disp%s from slider_disp and slider_accel (RTS smoother; noise %.3g m, %.3g m/s^2; offset %.3g m/s^2)",
+                  velMeasured ? "" : " and slider_vel", k.dispNoise, k.accelNoise, k.accelOffset);
+    c.notes.push_back(buf);
 }
 
 // Step 2: the band-stop then low-pass cascade at rate fs (empty when both are off).
@@ -208,6 +233,7 @@ bool preprocessRun(const io::Run& raw, const PreprocessSettings& s, CleanRun& ou
         }
         return false;
     }
+    if (s.fuseSliderAcceleration) fuseSliderKinematics(c);
     // Zero-phase filters on every measured signal; the force and slider displacement are kept
     // unfiltered as well (CleanRun::unfilteredForce_N).
     const dsp::Sos sos = designFilter(s.filters, fs);

@@ -43,6 +43,12 @@ struct PreprocessSettings {
     // at the refined drive frequency. Sensor noise on u would otherwise reach the predicted
     // force amplified by ε_T during stick. 0 = use the filtered measurement as it is.
     int stageFourierOrder = 5;
+    // Dynamics runs with a slider acceleration: the slider's displacement and velocity are
+    // replaced by the Rauch–Tung–Striebel smoother of ẍ = a over the raw signals
+    // (dsp::smoothKinematics, noise levels estimated per run). The law is driven by the slip
+    // g = u − x, and the position's noise differentiated into the slip rate biases it
+    // (docs/identify-results.md, session 70).
+    bool fuseSliderAcceleration = false;
     ParamIssues validate(double sampleRate_Hz) const;  // every problem, empty if fine
 };
 
