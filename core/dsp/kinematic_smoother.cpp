@@ -40,6 +40,12 @@ using Mat3 = Eigen::Matrix3d;
 // (exact for a piecewise-linear a): x' = x + v dt + (2 a_k + a_k+1 − 3b) dt²/6,
 // v' = v + (a_k + a_k+1 − 2b) dt/2, b' = b. Each sample's white noise enters through its
 // weight in both (its correlation between neighbouring steps is neglected).
+Mat3 transition(double dt) {
+    Mat3 F;
+    F << 1, dt, -dt * dt / 2, 0, 1, -dt, 0, 0, 1;
+    return F;
+}
+
 struct Pass {
     std::vector<Vec3> mf, mp;  // filtered and predicted means
     std::vector<Mat3> Pf, Pp;  // their covariances
@@ -48,8 +54,7 @@ struct Pass {
 
 Pass filterPass(const std::vector<double>& x, const std::vector<double>& a, double dt, double sx, double sa, bool keep) {
     const size_t n = x.size();
-    Mat3 F;
-    F << 1, dt, -dt * dt / 2, 0, 1, -dt, 0, 0, 1;
+    const Mat3 F = transition(dt);
     const Vec3 B0(dt * dt / 3, dt / 2, 0), B1(dt * dt / 6, dt / 2, 0);
     const Mat3 Q = sa * sa * (B0 * B0.transpose() + B1 * B1.transpose());
     const double R = sx * sx;
@@ -90,7 +95,10 @@ KinematicEstimate smoothKinematics(const std::vector<double>& x, const std::vect
     if (a.size() != n || n < 16) { est.message = "position and acceleration need >= 16 samples of equal length"; return est; }
     if (!(std::isfinite(dt) && dt > 0)) { est.message = "dt = " + std::to_string(dt) + " s: must be finite and > 0"; return est; }
     for (size_t i = 0; i < n; ++i)
-        if (!std::isfinite(x[i]) || !std::isfinite(a[i])) { est.message = "sample " + std::to_string(i) + " is not finite"; return est; }
+        if (!std::isfinite(x[i]) || !std::isfinite(a[i])) {
+            est.message = std::string(std::isfinite(x[i]) ? "acceleration" : "position") + " sample " + std::to_string(i) + " is not finite";
+            return est;
+        }
     double xScale = 0, aScale = 0;
     for (size_t i = 0; i < n; ++i) { xScale = std::max(xScale, std::abs(x[i])); aScale = std::max(aScale, std::abs(a[i])); }
     // Floors keep the filter's gains finite on noise-free signals (a smoother that then
@@ -113,10 +121,8 @@ KinematicEstimate smoothKinematics(const std::vector<double>& x, const std::vect
         sa = std::exp(0.5 * (lo + hi));
     }
     sa = std::max(sa, aFloor);
-    const double dt2 = dt * dt;
     Pass p = filterPass(x, a, dt, sx, sa, true);
-    Mat3 F;
-    F << 1, dt, -dt2 / 2, 0, 1, -dt, 0, 0, 1;
+    const Mat3 F = transition(dt);
     est.x.resize(n);
     est.v.resize(n);
     Vec3 ms = p.mf[n - 1];

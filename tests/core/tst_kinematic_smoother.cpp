@@ -125,7 +125,7 @@ private slots:
         std::vector<double> x = m.x;
         x[37] = std::nan("");
         KinematicEstimate k = smoothKinematics(x, m.a, m.dt);
-        QVERIFY(!k.ok && k.message.find("sample 37") != std::string::npos && k.x.empty());
+        QVERIFY(!k.ok && k.message.find("position sample 37") != std::string::npos && k.x.empty());
         k = smoothKinematics(m.x, std::vector<double>(99, 0.0), m.dt);
         QVERIFY(!k.ok && k.message.find("equal length") != std::string::npos);
         k = smoothKinematics(m.x, m.a, -1.0);
