@@ -17,20 +17,6 @@ std::string KinematicSmootherOptions::validate() const {
     return {};
 }
 
-double differenceNoise(const std::vector<double>& y, int order) {
-    if (order < 1 || order > 4 || y.size() < static_cast<size_t>(order) + 3) return std::numeric_limits<double>::quiet_NaN();
-    std::vector<double> d = y;
-    for (int k = 0; k < order; ++k) {
-        for (size_t i = 0; i + 1 < d.size(); ++i) d[i] = d[i + 1] - d[i];
-        d.pop_back();
-    }
-    const double med = median(d);
-    for (double& e : d) e = std::abs(e - med);
-    // Var of the order-th difference of white noise: σ² · C(2·order, order).
-    static constexpr double kGain[] = {0.0, 2.0, 6.0, 20.0, 70.0};
-    return 1.482602218505602 * median(std::move(d)) / std::sqrt(kGain[order]);
-}
-
 namespace {
 
 using Vec3 = Eigen::Vector3d;
@@ -103,13 +89,13 @@ KinematicEstimate smoothKinematics(const std::vector<double>& x, const std::vect
     for (size_t i = 0; i < n; ++i) { xScale = std::max(xScale, std::abs(x[i])); aScale = std::max(aScale, std::abs(a[i])); }
     // Floors keep the filter's gains finite on noise-free signals (a smoother that then
     // returns the measured position).
-    const double sx = std::max(opt.dispNoise > 0 ? opt.dispNoise : differenceNoise(x, 3), 1e-9 * xScale + 1e-15);
+    const double sx = std::max(opt.dispNoise > 0 ? opt.dispNoise : whiteNoiseRms(x, 3), 1e-9 * xScale + 1e-15);
     const double aFloor = 1e-9 * aScale + 1e-12;
     double sa = opt.accelNoise;
     if (!(sa > 0)) {
         // Maximum likelihood of the innovations over log σ_a (golden section), bracketed three
         // decades either side of the second differences' robust estimate.
-        const double s0 = std::max(differenceNoise(a, 2), aFloor);
+        const double s0 = std::max(whiteNoiseRms(a, 2), aFloor);
         double lo = std::log(s0) - 3 * std::log(10.0), hi = std::log(s0) + 3 * std::log(10.0);
         const double r = (std::sqrt(5.0) - 1) / 2;
         auto cost = [&](double ls) { return -filterPass(x, a, dt, sx, std::exp(ls), false).logLik; };

@@ -36,10 +36,4 @@ struct KinematicEstimate {
 KinematicEstimate smoothKinematics(const std::vector<double>& x, const std::vector<double>& a, double dt_s,
                                    const KinematicSmootherOptions& opt = {});
 
-// Robust rms of a signal's white noise from its order-th differences (order 1–4): the median
-// absolute deviation scaled to a Gaussian's σ and divided by the differences' gain
-// sqrt(C(2·order, order)). A smooth signal's own differences shrink as dt^order and sparse
-// kinks are ignored by the median.
-double differenceNoise(const std::vector<double>& y, int order);
-
 }  // namespace stickslip::dsp

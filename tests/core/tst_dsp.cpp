@@ -124,6 +124,27 @@ private slots:
         QCOMPARE(whiteNoiseRms({1.0, 2.0, 3.0}), 0.0);
     }
 
+    void whiteNoiseRmsOfEveryDifferenceOrder() {
+        // Orders 2–4 on a 3 Hz sine at 1 kHz plus 0.01 of white noise (the sine's own first
+        // differences are not small, so order 1 is checked on the noise alone); the default
+        // order is the third difference.
+        std::mt19937_64 rng(7);
+        std::normal_distribution<double> nd;
+        std::vector<double> y, w;
+        for (int i = 0; i < 20000; ++i) {
+            w.push_back(0.01 * nd(rng));
+            y.push_back(std::sin(2 * std::numbers::pi * 3 * i * 1e-3) + w.back());
+        }
+        for (int order = 2; order <= 4; ++order) {
+            const double s = whiteNoiseRms(y, order);
+            QVERIFY2(std::abs(s / 0.01 - 1) < 0.05, qPrintable(QString("order %1: %2").arg(order).arg(s)));
+        }
+        QVERIFY(std::abs(whiteNoiseRms(w, 1) / 0.01 - 1) < 0.05);
+        QCOMPARE(whiteNoiseRms(y), whiteNoiseRms(y, 3));
+        QVERIFY(std::isnan(whiteNoiseRms(y, 0)) && std::isnan(whiteNoiseRms(y, 5)));
+        QCOMPARE(whiteNoiseRms({1.0, 2.0}, 2), 0.0);
+    }
+
     void medianOddEvenEmpty() {
         QCOMPARE(median({3.0, 1.0, 2.0}), 2.0);
         QCOMPARE(median({5.0, -1.0, 4.0, 9.0, 0.5}), 4.0);

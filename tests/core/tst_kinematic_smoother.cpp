@@ -1,4 +1,4 @@
-// dsp::smoothKinematics and dsp::differenceNoise: the slider state from displacement and
+// dsp::smoothKinematics: the slider state from displacement and
 // acceleration together, checked against a known motion with known noise; and the opt-in
 // preprocessing step that uses it (PreprocessSettings::fuseSliderAcceleration).
 #include <QtTest>
@@ -56,19 +56,6 @@ double rms(const std::vector<double>& a, const std::vector<double>& b, size_t sk
 class TstKinematicSmoother : public QObject {
     Q_OBJECT
 private slots:
-    void differenceNoiseRecoversWhiteNoiseOnASmoothSignal() {
-        std::mt19937_64 rng(7);
-        std::normal_distribution<double> nd;
-        std::vector<double> y;
-        for (int i = 0; i < 20000; ++i) y.push_back(std::sin(2 * kPi * 3 * i * 1e-3) + 0.01 * nd(rng));
-        for (int order = 2; order <= 4; ++order) {  // a 3 Hz sine's own first differences are not small
-            const double s = differenceNoise(y, order);
-            QVERIFY2(std::abs(s / 0.01 - 1) < 0.05, qPrintable(QString("order %1: %2").arg(order).arg(s)));
-        }
-        QVERIFY(std::isnan(differenceNoise(y, 0)) && std::isnan(differenceNoise(y, 5)));
-        QVERIFY(std::isnan(differenceNoise({1.0, 2.0}, 3)));
-    }
-
     // Noise as on the rig (10 µm, 0.05 m/s², and an accelerometer offset): the fused velocity
     // is an order of magnitude closer to the truth than central differences of the position
     // and several times closer than its Savitzky–Golay derivative (±7 samples), the position is closer than the measurement, and the noise levels and the
