@@ -58,6 +58,18 @@ bool cleanRuns(const MeasuredRuns& runs, std::vector<CleanRun>& fit, std::vector
 
 namespace {
 
+// The report's preprocessing.runs[] (as `stickslip-cli fit|identify --report`): fitted runs, then
+// held-out ones, each with its cleaning notes.
+nlohmann::json cleanedRunsJson(const MeasuredRuns& runs, const std::vector<CleanRun>& fit, const std::vector<CleanRun>& val) {
+    nlohmann::json out = nlohmann::json::array();
+    std::vector<std::string> fitFiles, valFiles;
+    for (size_t i = 0; i < runs.data.runs.size(); ++i)
+        (i < runs.validation.size() && runs.validation[i] ? valFiles : fitFiles).push_back(runs.data.runs[i].file);
+    for (size_t i = 0; i < fit.size() && i < fitFiles.size(); ++i) out.push_back(identify::cleanRunSummary(fit[i], fitFiles[i]));
+    for (size_t i = 0; i < val.size() && i < valFiles.size(); ++i) out.push_back(identify::cleanRunSummary(val[i], valFiles[i]));
+    return out;
+}
+
 RunOverlay overlayOf(const CleanRun& c, const std::string& role, SetupKind setup, const ModelSpec& model,
                      const PredictSettings& predict) {
     RunOverlay o;
@@ -128,6 +140,7 @@ FitOutcome runFitJob(const FitRequest& request, const std::atomic<bool>* cancel,
         out.elapsed_ms = msSince(clock);
         return out;
     }
+    out.cleanedRuns = cleanedRunsJson(request.runs, fitRuns, valRuns);
     if (request.splitTime > 0.0) {
         const std::string e = holdOutLaterParts(fitRuns, valRuns, request.splitTime);
         if (!e.empty()) {
@@ -188,6 +201,7 @@ IdentifyOutcome runIdentifyJob(const IdentifyRequest& request, const std::atomic
         out.elapsed_ms = msSince(clock);
         return out;
     }
+    out.cleanedRuns = cleanedRunsJson(request.runs, fitRuns, valRuns);
     std::vector<IdentifyRun> runs;
     // Recording order matters (wear drift): keep the runs in the order they were loaded.
     size_t fi = 0, vi = 0;
@@ -222,6 +236,7 @@ nlohmann::json fitReportJson(const FitOutcome& o) {
     for (const auto& lf : o.fits) fitted.push_back(&lf.fit);
     nlohmann::json rep = fitReportJson(fitted);  // the layout of `stickslip-cli fit --report`
     rep["preprocessing"] = toJson(o.request.runs.pre);
+    rep["preprocessing"]["runs"] = o.cleanedRuns;
     rep["prediction"] = toJson(o.request.settings.predict);
     rep["validation"] = o.request.runs.validationCount() > 0 ? "by run"
                         : (o.request.splitTime > 0 ? "by time" : "none");
@@ -236,6 +251,7 @@ nlohmann::json fitReportJson(const FitOutcome& o) {
 nlohmann::json identifyReportJson(const IdentifyOutcome& o) {
     nlohmann::json j = toJson(o.result);
     j["preprocessing"] = toJson(o.request.runs.pre);
+    j["preprocessing"]["runs"] = o.cleanedRuns;
     nlohmann::json data = nlohmann::json::array(), val = nlohmann::json::array();
     for (size_t i = 0; i < o.request.runs.data.runs.size(); ++i)
         (i < o.request.runs.validation.size() && o.request.runs.validation[i] ? val : data).push_back(o.request.runs.data.runs[i].file);

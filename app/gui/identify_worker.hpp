@@ -71,6 +71,7 @@ struct FitOutcome {
     QString message;               // why it failed
     FitRequest request;            // what was run (the settings, for the report)
     std::vector<LawFit> fits;      // in request.laws order
+    nlohmann::json cleanedRuns = nlohmann::json::array();  // identify::cleanRunSummary per run, fitted then held out
     double elapsed_ms = 0;
 };
 
@@ -86,6 +87,7 @@ struct IdentifyOutcome {
     QString message;
     IdentifyRequest request;
     identify::IdentifyResult result;
+    nlohmann::json cleanedRuns = nlohmann::json::array();  // identify::cleanRunSummary per run, fitted then held out
     double elapsed_ms = 0;
 };
 

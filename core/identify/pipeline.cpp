@@ -43,17 +43,6 @@ bool cleanRuns(const io::Dataset& ds, const PreprocessSettings& pre, std::vector
     return true;
 }
 
-nlohmann::json runSummary(const CleanRun& c, const io::Run& r) {
-    nlohmann::json settings = nlohmann::json::object();
-    for (const auto& [k, v] : c.run.settings) {
-        const auto src = c.run.settingSource.find(k);
-        settings[k] = {{"value", v}, {"source", src == c.run.settingSource.end() ? std::string() : src->second}};
-    }
-    return {{"file", r.file}, {"sample_rate_Hz", 1.0 / c.dt_s},
-            {"fit_window_s", {c.run[Signal::Time][c.begin], c.run[Signal::Time][c.end - 1]}},
-            {"period_s", c.period_s}, {"resampled", c.resampled}, {"notes", c.notes}, {"settings", settings}};
-}
-
 // The solver settings of a fit request (everything but setup and law).
 bool fitSettings(const FitRequest& o, SetupKind setup, DatasetFitSettings& st, PipelineStatus& status) {
     st.setup = setup;
@@ -101,6 +90,17 @@ bool fitSettings(const FitRequest& o, SetupKind setup, DatasetFitSettings& st, P
 }
 
 }  // namespace
+
+nlohmann::json cleanRunSummary(const CleanRun& c, const std::string& file) {
+    nlohmann::json settings = nlohmann::json::object();
+    for (const auto& [k, v] : c.run.settings) {
+        const auto src = c.run.settingSource.find(k);
+        settings[k] = {{"value", v}, {"source", src == c.run.settingSource.end() ? std::string() : src->second}};
+    }
+    return {{"file", file}, {"sample_rate_Hz", 1.0 / c.dt_s},
+            {"fit_window_s", {c.run[Signal::Time][c.begin], c.run[Signal::Time][c.end - 1]}},
+            {"period_s", c.period_s}, {"resampled", c.resampled}, {"notes", c.notes}, {"settings", settings}};
+}
 
 std::vector<std::string> splitList(const std::string& s) {
     std::vector<std::string> out;
@@ -158,7 +158,7 @@ bool loadMeasuredInputs(const MeasuredInputs& o, io::Dataset& fitData, io::Datas
 }
 
 bool runFitRequest(const FitRequest& o, FitOutcome& out, PipelineStatus& status) {
-    out = FitOutcome{};  // cleanRuns appends; runSummary pairs out.fitRuns[i] with fitData.runs[i]
+    out = FitOutcome{};  // cleanRuns appends; cleanRunSummary pairs out.fitRuns[i] with fitData.runs[i]
     io::Dataset fitData, valData;
     if (!loadMeasuredInputs(o.in, fitData, valData, out.setup, status)) return false;
     const PreprocessSettings pre = o.cleaning.effective();
@@ -166,9 +166,9 @@ bool runFitRequest(const FitRequest& o, FitOutcome& out, PipelineStatus& status)
     if (!cleanRuns(fitData, pre, out.fitRuns, status) || !cleanRuns(valData, pre, out.validationRuns, status))
         return false;
     nlohmann::json perRun = nlohmann::json::array();
-    for (size_t i = 0; i < out.fitRuns.size(); ++i) perRun.push_back(runSummary(out.fitRuns[i], fitData.runs[i]));
+    for (size_t i = 0; i < out.fitRuns.size(); ++i) perRun.push_back(cleanRunSummary(out.fitRuns[i], fitData.runs[i].file));
     for (size_t i = 0; i < out.validationRuns.size(); ++i)
-        perRun.push_back(runSummary(out.validationRuns[i], valData.runs[i]));
+        perRun.push_back(cleanRunSummary(out.validationRuns[i], valData.runs[i].file));
     if (o.splitTime > 0.0) {
         const std::string e = holdOutLaterParts(out.fitRuns, out.validationRuns, o.splitTime);
         if (!e.empty()) return fail(status, PipelineCode::BadArguments, "--split-time: " + e);
@@ -293,6 +293,10 @@ bool runIdentifyRequest(const IdentifyRequest& o, IdentifyResult& res, nlohmann:
         return fail(status, res.cancelled ? PipelineCode::Cancelled : PipelineCode::RunFailed, "self-test: " + res.selfTest.message);
     report = toJson(res);
     report["preprocessing"] = toJson(pre);
+    nlohmann::json perRun = nlohmann::json::array();
+    for (size_t i = 0; i < fitClean.size(); ++i) perRun.push_back(cleanRunSummary(fitClean[i], fitData.runs[i].file));
+    for (size_t i = 0; i < valClean.size(); ++i) perRun.push_back(cleanRunSummary(valClean[i], valData.runs[i].file));
+    report["preprocessing"]["runs"] = perRun;
     report["inputs"] = {{"data", o.in.data}, {"validate_on", o.in.validateOn}, {"manifest", o.in.manifest}};
     return true;
 }

@@ -45,6 +45,11 @@ struct CleaningOptions {
     PreprocessSettings effective() const;
 };
 
+// One cleaned run for a report's preprocessing.runs[]: its file, sample rate, fit window,
+// drive period, whether it was resampled, the cleaning notes (what each step did, with the
+// levels it estimated) and its settings with their sources.
+nlohmann::json cleanRunSummary(const CleanRun& c, const std::string& file);
+
 // "a,b,,c" -> {"a", "b", "c"} (spaces dropped).
 std::vector<std::string> splitList(const std::string& s);
 

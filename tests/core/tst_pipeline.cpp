@@ -69,6 +69,12 @@ private slots:
         QVERIFY(out.report.contains("preprocessing") && out.report.contains("prediction"));
         QCOMPARE(out.report["validation"].get<std::string>(), std::string("none"));
         QCOMPARE(out.report["preprocessing"]["runs"].size(), size_t(1));
+        // One run's summary: its file, window and the cleaning notes, as the report lists them.
+        const nlohmann::json one = cleanRunSummary(out.fitRuns[0], "x.csv");
+        QCOMPARE(one["file"].get<std::string>(), std::string("x.csv"));
+        QCOMPARE(one["notes"].size(), out.fitRuns[0].notes.size());
+        QVERIFY(!out.fitRuns[0].notes.empty() && one["fit_window_s"].size() == 2);
+        QCOMPARE(one["notes"], out.report["preprocessing"]["runs"][0]["notes"]);
         // The outcome of an earlier request is replaced, not appended to (the sanitizer pass
         // found the second call reading the runs of the first: a heap-buffer-overflow).
         QVERIFY2(runFitRequest(req, out, st), st.message.c_str());
@@ -199,6 +205,12 @@ private slots:
         QVERIFY2(res.candidates[0].reason.find("fit failed") == std::string::npos, res.candidates[0].reason.c_str());
         QVERIFY2(res.candidates[0].accepted, res.candidates[0].reason.c_str());
         QVERIFY(res.after.validationNrmse < 0.95 * res.before.validationNrmse);
+        // The report lists every run's cleaning, fitted runs first, as `fit --report` does.
+        const nlohmann::json& runs = j["preprocessing"]["runs"];
+        QCOMPARE(runs.size(), size_t(12));
+        QVERIFY(runs[5]["file"].get<std::string>().find("30lb") != std::string::npos);
+        QVERIFY(runs[6]["file"].get<std::string>().find("36lb") != std::string::npos);
+        for (const nlohmann::json& r : runs) QVERIFY(!r["notes"].empty());
     }
 };
 

@@ -5,6 +5,7 @@
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QFile>
+#include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
@@ -114,6 +115,10 @@ void checkReportExport(IdentifyPanel& p, const IdentifyResult& core) {
     for (const char* key : {"before", "after", "effects_added", "candidates", "unexplained"})
         QVERIFY2(j.contains(key), key);
     QCOMPARE(j.value("before").toObject().value("fit_nrmse").toDouble(), core.before.fitNrmse);
+    // Each run's cleaning notes, as `stickslip-cli identify --report` lists them.
+    const QJsonArray cleaned = j.value("preprocessing").toObject().value("runs").toArray();
+    QCOMPARE(cleaned.size(), p.runCount());
+    for (const QJsonValue& r : cleaned) QVERIFY(!r.toObject().value("notes").toArray().isEmpty());
     QFile h(dir.filePath("report.html"));
     QVERIFY(h.open(QIODevice::ReadOnly));
     const QByteArray head = h.read(64).trimmed();
@@ -280,6 +285,10 @@ private slots:
         QVERIFY(j.value("parameters").toObject().contains("mu"));
         QCOMPARE(j.value("parameters").toObject().value("mu").toObject().value("value").toDouble(), o.fits[0].fit.fit.value("mu"));
         QVERIFY(j.contains("coulomb") && j.contains("runs") && j.contains("preprocessing"));
+        // Each run's cleaning notes, as in `stickslip-cli fit --report`.
+        const QJsonArray cleaned = j.value("preprocessing").toObject().value("runs").toArray();
+        QCOMPARE(cleaned.size(), p.runCount());
+        QVERIFY(!cleaned.at(0).toObject().value("notes").toArray().isEmpty());
     }
 
     void cancelReturnsControl() {
