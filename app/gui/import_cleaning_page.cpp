@@ -86,7 +86,7 @@ QWidget* ImportCleaningPage::buildSettings() {
     auto changed = [this] {
         if (!populating_) emit settingsChanged();
     };
-    for (QCheckBox* c : {bandStop_, lowPass_, steadyTrim_, resample_}) connect(c, &QCheckBox::toggled, this, changed);
+    for (QCheckBox* c : {bandStop_, lowPass_, steadyTrim_, resample_, fuseAccel_}) connect(c, &QCheckBox::toggled, this, changed);
     for (QDoubleSpinBox* b : {bandCenter_, bandWidth_, lowPassHz_, trimStart_, trimEnd_, trimFraction_})
         connect(b, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, changed);
     for (QSpinBox* b : {bandOrder_, lowPassOrder_, sgHalf_, sgOrder_, stageHarmonics_})
@@ -131,10 +131,16 @@ QWidget* ImportCleaningPage::buildDerivativeBox() {
     stageHarmonics_->setToolTip(tr("Dynamics runs: the stage displacement driving the model is replaced by its "
                                    "Fourier fit with this many harmonics (0: the filtered measurement)"));
     resample_ = new QCheckBox(tr("Resample irregular time steps"));
+    fuseAccel_ = new QCheckBox(tr("Fuse slider x with acceleration"));
+    fuseAccel_->setToolTip(tr("Dynamics runs with a slider acceleration: the slider's displacement and velocity "
+                              "come from a Rauch\u2013Tung\u2013Striebel smoother of x'' = a (noise levels "
+                              "estimated per run; see the status line's notes). The position's noise, "
+                              "differentiated into the slip rate, otherwise biases the law's C1, \u03b7, v_c"));
     df->addRow(tr("SG half window:"), sgHalf_);
     df->addRow(tr("SG order:"), sgOrder_);
     df->addRow(tr("Stage harmonics:"), stageHarmonics_);
     df->addRow(resample_);
+    df->addRow(fuseAccel_);
     return deriv;
 }
 
@@ -195,6 +201,7 @@ identify::PreprocessSettings ImportCleaningPage::settings() const {
     s.sgHalfWindow = sgHalf_->value();
     s.sgOrder = sgOrder_->value();
     s.stageFourierOrder = stageHarmonics_->value();
+    s.fuseSliderAcceleration = fuseAccel_->isChecked();
     s.trim.start_s = trimStart_->value();
     s.trim.end_s = trimEnd_->value();
     s.trim.steadyAmplitude = steadyTrim_->isChecked();
@@ -215,6 +222,7 @@ void ImportCleaningPage::setSettings(const identify::PreprocessSettings& s) {
     sgHalf_->setValue(s.sgHalfWindow);
     sgOrder_->setValue(s.sgOrder);
     stageHarmonics_->setValue(s.stageFourierOrder);
+    fuseAccel_->setChecked(s.fuseSliderAcceleration);
     trimStart_->setValue(s.trim.start_s);
     trimEnd_->setValue(s.trim.end_s);
     steadyTrim_->setChecked(s.trim.steadyAmplitude);

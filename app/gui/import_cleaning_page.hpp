@@ -65,7 +65,7 @@ private:
     void showCleaning();
     void showStatus(double windowBegin_s, double windowEnd_s);
 
-    QCheckBox *bandStop_ = nullptr, *lowPass_ = nullptr, *steadyTrim_ = nullptr, *resample_ = nullptr;
+    QCheckBox *bandStop_ = nullptr, *lowPass_ = nullptr, *steadyTrim_ = nullptr, *resample_ = nullptr, *fuseAccel_ = nullptr;
     QDoubleSpinBox *bandCenter_ = nullptr, *bandWidth_ = nullptr, *lowPassHz_ = nullptr;
     QSpinBox *bandOrder_ = nullptr, *lowPassOrder_ = nullptr, *sgHalf_ = nullptr, *sgOrder_ = nullptr,
              *stageHarmonics_ = nullptr;

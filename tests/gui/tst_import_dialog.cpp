@@ -414,6 +414,18 @@ private slots:
         check(Signal::Friction, 1.0);
         check(Signal::SliderDisp, 1e3);
 
+        // The slider state fused with its acceleration (opt-in): the plot shows what
+        // preprocessRun gives with it, and the run's notes name the smoother's levels.
+        QVERIFY(!d.preprocessSettings().fuseSliderAcceleration);
+        s.fuseSliderAcceleration = true;
+        d.setPreprocessSettings(s);
+        QVERIFY(waitIdle(d));
+        QVERIFY(d.preprocessSettings().fuseSliderAcceleration);
+        check(Signal::SliderDisp, 1e3);
+        bool named = false;
+        for (const std::string& n : d.cleaningPreview().clean.notes) named = named || n.find("RTS smoother") != std::string::npos;
+        QVERIFY(named);
+
         // A derived signal (relative velocity) has no raw curve.
         d.setPlotSignal(Signal::RelVel);
         QVERIFY(d.comparePlot()->curve("cleaned"));
