@@ -102,6 +102,19 @@ nlohmann::json cleanRunSummary(const CleanRun& c, const std::string& file) {
             {"period_s", c.period_s}, {"resampled", c.resampled}, {"notes", c.notes}, {"settings", settings}};
 }
 
+namespace {
+
+// A report's preprocessing.runs[]: the fitted runs, then the held-out ones (cleaned[i] from data.runs[i]).
+nlohmann::json cleanRunsJson(const std::vector<CleanRun>& fit, const io::Dataset& fitData, const std::vector<CleanRun>& val,
+                             const io::Dataset& valData) {
+    nlohmann::json out = nlohmann::json::array();
+    for (size_t i = 0; i < fit.size(); ++i) out.push_back(cleanRunSummary(fit[i], fitData.runs[i].file));
+    for (size_t i = 0; i < val.size(); ++i) out.push_back(cleanRunSummary(val[i], valData.runs[i].file));
+    return out;
+}
+
+}  // namespace
+
 std::vector<std::string> splitList(const std::string& s) {
     std::vector<std::string> out;
     std::string cur;
@@ -165,10 +178,7 @@ bool runFitRequest(const FitRequest& o, FitOutcome& out, PipelineStatus& status)
     nlohmann::json preJson = toJson(pre);
     if (!cleanRuns(fitData, pre, out.fitRuns, status) || !cleanRuns(valData, pre, out.validationRuns, status))
         return false;
-    nlohmann::json perRun = nlohmann::json::array();
-    for (size_t i = 0; i < out.fitRuns.size(); ++i) perRun.push_back(cleanRunSummary(out.fitRuns[i], fitData.runs[i].file));
-    for (size_t i = 0; i < out.validationRuns.size(); ++i)
-        perRun.push_back(cleanRunSummary(out.validationRuns[i], valData.runs[i].file));
+    const nlohmann::json perRun = cleanRunsJson(out.fitRuns, fitData, out.validationRuns, valData);
     if (o.splitTime > 0.0) {
         const std::string e = holdOutLaterParts(out.fitRuns, out.validationRuns, o.splitTime);
         if (!e.empty()) return fail(status, PipelineCode::BadArguments, "--split-time: " + e);
@@ -293,10 +303,7 @@ bool runIdentifyRequest(const IdentifyRequest& o, IdentifyResult& res, nlohmann:
         return fail(status, res.cancelled ? PipelineCode::Cancelled : PipelineCode::RunFailed, "self-test: " + res.selfTest.message);
     report = toJson(res);
     report["preprocessing"] = toJson(pre);
-    nlohmann::json perRun = nlohmann::json::array();
-    for (size_t i = 0; i < fitClean.size(); ++i) perRun.push_back(cleanRunSummary(fitClean[i], fitData.runs[i].file));
-    for (size_t i = 0; i < valClean.size(); ++i) perRun.push_back(cleanRunSummary(valClean[i], valData.runs[i].file));
-    report["preprocessing"]["runs"] = perRun;
+    report["preprocessing"]["runs"] = cleanRunsJson(fitClean, fitData, valClean, valData);
     report["inputs"] = {{"data", o.in.data}, {"validate_on", o.in.validateOn}, {"manifest", o.in.manifest}};
     return true;
 }
