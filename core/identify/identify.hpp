@@ -124,10 +124,12 @@ struct IdentifyOptions {
     //      in-sample for any n_eff. The paired test asks whether the gain carries over to
     //      unseen runs beyond the run-to-run scatter of the gain.
     //  (2b) relevance: the mean of those d_i reaches ln(1/(1 − minHeldOutGain)) (below).
-    //  (3) identifiability: the effect's size parameter (params[0]) differs from the value at
-    //      which the effect vanishes by more than t_{K−1, 1−α/2} (α = identifiabilityAlpha)
-    //      jackknife standard errors over the K leave-one-run-out fits (Jacobian stderr ×
-    //      sqrt(τ_int) and the normal quantile when there are no such fits). An effect of the
+    //  (3) identifiability: the effect's size (its EffectSize at the fit runs' operating point,
+    //      e.g. the healing's strength after the runs' duration-weighted median stick, else its
+    //      first parameter) differs from the value at which the effect vanishes by more than
+    //      t_{K−1, 1−α/2} (α = identifiabilityAlpha) jackknife standard errors over the K
+    //      leave-one-run-out fits (Jacobian stderr × sqrt(τ_int), by the delta method for an
+    //      EffectSize, and the normal quantile when there are no such fits). An effect of the
     //      specimen has one value for all runs; a term that absorbs a model error of the residual
     //      channel takes values that depend on which runs it is fitted to.
     //  With fewer than 3 held-out runs (≤ 1 degree of freedom, no power) (2) requires every

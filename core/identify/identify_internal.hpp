@@ -359,7 +359,11 @@ constexpr int kMinUnitsForTests = 3;  // runs needed for the paired test and the
 bool passesSelection(const Context& cx, CandidateScore& sc, const FitOutcome& fit, const ModelErrors& ref,
                      const ModelErrors& with, const std::vector<std::map<std::string, double>>& loo,
                      const std::vector<size_t>& units, double tauInt);
-// Test (3) alone: the effect's size parameter in `fit` differs from the value at which the effect
+// The fit runs' operating point (effects/effect.hpp): the duration-weighted median of the stick
+// episodes that begin after a slip and end in one, stuck meaning |V| below
+// IdentifyOptions::stickVelocity_mps.
+OperatingPoint operatingPoint(const Context& cx);
+// Test (3) alone: the effect's size (EffectSize, else its first parameter) in `fit` differs from the value at which the effect
 // vanishes by more than t_{1−α/2} standard errors (the jackknife over `loo` when it has at least
 // kMinUnitsForTests fits and is the larger, else the Jacobian's × sqrt(τ_int)). Fills sc's size
 // figures; false with sc.reason set when it does not.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -169,11 +170,81 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
 
 }  // namespace
 
-// Test (3): the size parameter is identified away from the value at which the effect vanishes.
+namespace {
+
+// The effect's parameters in `values` without its prefix.
+std::map<std::string, double> effectParams(const std::map<std::string, double>& values, const std::string& effect) {
+    std::map<std::string, double> p;
+    const std::string prefix = effect + ".";
+    for (const auto& [k, v] : values)
+        if (k.rfind(prefix, 0) == 0) p[k.substr(prefix.size())] = v;
+    return p;
+}
+
+// Delta-method standard error of f(the effect's parameters) from the fit's standard errors and
+// correlations of its free parameters; NaN when the fit has none to give.
+double derivedStderr(const FitResult& fr, const std::string& effect, const std::map<std::string, double>& p,
+                     const std::function<double(const std::map<std::string, double>&)>& f) {
+    const size_t n = fr.freeNames.size();
+    if (fr.correlation.size() != n * n) return kNaN;
+    std::vector<double> g(n, 0.0), se(n, 0.0);
+    for (size_t i = 0; i < n; ++i) {
+        const std::string& key = fr.freeNames[i];
+        if (key.rfind(effect + ".", 0) != 0) continue;
+        const std::string name = key.substr(effect.size() + 1);
+        const auto it = std::find(fr.names.begin(), fr.names.end(), key);
+        if (!p.count(name) || it == fr.names.end()) continue;
+        se[i] = fr.stderrs[static_cast<size_t>(it - fr.names.begin())];
+        const double v = p.at(name), h = 1e-6 * std::max(std::abs(v), 1e-12);
+        std::map<std::string, double> up = p, down = p;
+        up[name] = v + h;
+        down[name] = v - h;
+        g[i] = (f(up) - f(down)) / (2.0 * h);
+    }
+    double var = 0.0;
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = 0; j < n; ++j)
+            if (g[i] != 0.0 && g[j] != 0.0) var += g[i] * g[j] * se[i] * se[j] * fr.correlation[i * n + j];
+    return var >= 0.0 ? std::sqrt(var) : kNaN;
+}
+
+}  // namespace
+
+OperatingPoint operatingPoint(const Context& cx) {
+    const double vStick = cx.opt->stickVelocity_mps;
+    std::vector<double> d;
+    for (const Prepared& p : cx.runs) {
+        if (p.run->validation) continue;
+        bool slipped = false, stuck = false;
+        double start = 0.0;
+        for (size_t k = 0; k < p.V.size(); ++k) {
+            const bool s = std::abs(p.V[k]) < vStick;
+            if (s && !stuck && slipped) start = p.t[k];
+            if (!s && stuck && slipped) d.push_back(p.t[k] - start);
+            if (!s) slipped = true;
+            stuck = s;
+        }
+    }
+    // The median weighted by duration (the episode that holds the median stuck instant): a slip
+    // rate's noise about the stick threshold splits sticks into fragments of a sample or two
+    // (N409: 369 of 1208 episodes shorter than 10 ms), which carry little stuck time.
+    OperatingPoint op;
+    std::sort(d.begin(), d.end());
+    const double half = 0.5 * std::accumulate(d.begin(), d.end(), 0.0);
+    double sum = 0.0;
+    for (double x : d)
+        if ((sum += x) >= half) {
+            op.stickDuration_s = x;
+            break;
+        }
+    return op;
+}
+
+// Test (3): the size is identified away from the value at which the effect vanishes.
 bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit,
                     const std::vector<std::map<std::string, double>>& loo, double tauInt) {
     const IdentifyOptions& opt = *cx.opt;
-    // The size parameter differs from the value at which the effect vanishes by more than
+    // The size differs from the value at which the effect vanishes by more than
     // t_{K−1, 1−α/2} jackknife standard errors over the leave-one-run-out fits (or Jacobian ones,
     // where larger or where there are fewer than three such fits).
     EffectInfo info;
@@ -181,21 +252,35 @@ bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit
     if (info.params.empty()) return true;
     const EffectParam& q = info.params.front();
     const std::string key = sc.name + "." + q.name;
-    const bool inverse = std::isinf(q.vanishing);  // e.g. a stiffness: test its compliance 1/k
-    const double none = inverse ? 0.0 : effectVanishes(cx, sc.name, q);
-    auto size = [&](double v) { return inverse ? 1.0 / v : v; };
-    const double value = fit.values.count(key) ? size(fit.values.at(key)) : kNaN;
+    // The effect's own size quantity at the runs' operating point (EffectSize), else its first
+    // parameter (+infinity as the vanishing value, e.g. a stiffness: its compliance 1/k).
+    const OperatingPoint op = info.size.value ? operatingPoint(cx) : OperatingPoint{};
+    std::function<double(const std::map<std::string, double>&)> derived;
+    if (info.size.value) derived = [&](const std::map<std::string, double>& p) { return info.size.value(p, op); };
+    const bool useDerived = derived && std::isfinite(derived(effectParams(fit.values, sc.name)));
+    const bool inverse = !useDerived && std::isinf(q.vanishing);
+    const double none = useDerived || inverse ? 0.0 : effectVanishes(cx, sc.name, q);
+    auto sizeOf = [&](const std::map<std::string, double>& values) {
+        if (useDerived) return derived(effectParams(values, sc.name));
+        if (!values.count(key)) return kNaN;
+        return inverse ? 1.0 / values.at(key) : values.at(key);
+    };
+    const double value = sizeOf(fit.values);
     std::vector<double> jk;
     for (const auto& m : loo)
-        if (m.count(key)) jk.push_back(size(m.at(key)));
+        if (const double v = sizeOf(m); useDerived ? std::isfinite(v) : m.count(key) > 0) jk.push_back(v);
     // The Jacobian standard error made honest for autocorrelated residuals (× sqrt(τ_int)).
     double jse = kNaN;
-    for (const ParamEstimate& p : fit.estimates)
-        if (p.name == key) jse = p.stderr_;
-    if (std::isfinite(jse) && inverse && fit.values.count(key)) jse /= fit.values.at(key) * fit.values.at(key);
+    if (useDerived) {
+        jse = derivedStderr(fit.fit, sc.name, effectParams(fit.values, sc.name), derived);
+    } else {
+        for (const ParamEstimate& p : fit.estimates)
+            if (p.name == key) jse = p.stderr_;
+        if (std::isfinite(jse) && inverse && fit.values.count(key)) jse /= fit.values.at(key) * fit.values.at(key);
+    }
     jse *= std::sqrt(std::max(tauInt, 1.0));
     double se = jse, crit = studentTQuantile(1.0 - 0.5 * opt.identifiabilityAlpha, 1e9);
-    sc.sizeStderrKind = "Jacobian x sqrt(tau_int)";
+    sc.sizeStderrKind = useDerived ? "delta method on the Jacobian's x sqrt(tau_int)" : "Jacobian x sqrt(tau_int)";
     if (jk.size() >= static_cast<size_t>(kMinUnitsForTests)) {
         // With K ≥ 3 leave-one-run-out fits: the jackknife, t_{K−1} quantile, unless the Jacobian's
         // is larger (fit's convention): refits that all stop at one value (stalled on a bound,
@@ -210,7 +295,9 @@ bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit
             sc.sizeStderrKind += " (larger than the " + kind + ")";
         }
     }
-    sc.sizeParam = inverse ? "1/" + q.name : q.name;
+    sc.sizeParam = useDerived ? info.size.name + " (operating point: stick " + fmt(op.stickDuration_s) + " s)"
+                   : inverse  ? "1/" + q.name
+                              : q.name;
     sc.sizeValue = value;
     sc.sizeNull = none;
     sc.sizeStderr = se;

@@ -4,6 +4,9 @@
 // is a small value type in its own file; effects/registry.hpp registers them in one place.
 #pragma once
 
+#include <functional>
+#include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -38,6 +41,24 @@ struct EffectSetups {
     bool dynamics = true;    // spring–mass rig (Eq. 8) driven by the stage
 };
 
+// What the fitted runs contain, for an effect whose size is judged where the runs put it.
+struct OperatingPoint {
+    // Median duration, weighted by duration, of the fit runs' stick episodes that begin after a
+    // slip and end in one [s]; NaN without such an episode.
+    double stickDuration_s = std::numeric_limits<double>::quiet_NaN();
+};
+
+// The quantity identify's size test judges (IdentifyOptions, test 3). Unset, it is the first
+// parameter. An effect whose first parameter trades off with another in what the runs show
+// (the healing's rate b against its age scale t_c: a larger b with a larger t_c gives the same
+// breakaway after the sticks the runs contain) sets it to what the runs do identify: a function
+// of its parameters (names without the effect's prefix) at the runs' operating point, vanishing
+// at 0. A non-finite value (no operating point) falls back to the first parameter.
+struct EffectSize {
+    std::string name;  // as the report shows it
+    std::function<double(const std::map<std::string, double>&, const OperatingPoint&)> value;
+};
+
 struct EffectInfo {
     std::string name;                    // catalogue name, e.g. "frictional_lag"
     std::string description;             // one paragraph of physics
@@ -45,6 +66,7 @@ struct EffectInfo {
     std::vector<EffectParam> params;     // the first one sets the size of the effect (identify checks it is not on a bound)
     std::vector<std::string> pointers;   // diagnostic signals (names in diagnostics.hpp) that point to it
     EffectSetups setups;
+    EffectSize size = {};                // unset: params.front() is the size
 };
 
 }  // namespace stickslip::identify

@@ -46,7 +46,15 @@ struct StickHealing {
                  {"tc_s", "s", 0.01, 1e-5, 10.0, true},
                  {"Dh_m", "m", 2e-5, 1e-7, 1e-2, true}},
                 {"time_stuck_before_slip"},
-                {true, true}};
+                {true, true},
+                // b alone trades off with t_c (b ln(1 + θ/t_c) at the sticks the runs contain is
+                // what they show): the size is the strength after the runs' typical stick
+                // (OperatingPoint: the duration-weighted median).
+                {"strength_after_median_stick",
+                 [](const std::map<std::string, double>& p, const OperatingPoint& op) {
+                     const StickHealing h{p.at("b_heal"), p.at("tc_s"), p.at("Dh_m")};
+                     return h.strength(op.stickDuration_s);
+                 }}};
     }
 };
 
