@@ -59,6 +59,12 @@ struct EffectSize {
     std::function<double(const std::map<std::string, double>&, const OperatingPoint&)> value;
 };
 
+// p[name], NaN when p does not have it (a refit that gave no values): an EffectSize never throws.
+inline double paramOr(const std::map<std::string, double>& p, const std::string& name) {
+    const auto it = p.find(name);
+    return it != p.end() ? it->second : std::numeric_limits<double>::quiet_NaN();
+}
+
 struct EffectInfo {
     std::string name;                    // catalogue name, e.g. "frictional_lag"
     std::string description;             // one paragraph of physics

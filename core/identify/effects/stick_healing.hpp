@@ -52,7 +52,7 @@ struct StickHealing {
                 // (OperatingPoint: the duration-weighted median).
                 {"strength_after_median_stick",
                  [](const std::map<std::string, double>& p, const OperatingPoint& op) {
-                     const StickHealing h{p.at("b_heal"), p.at("tc_s"), p.at("Dh_m")};
+                     const StickHealing h{paramOr(p, "b_heal"), paramOr(p, "tc_s"), paramOr(p, "Dh_m")};
                      return h.strength(op.stickDuration_s);
                  }}};
     }
