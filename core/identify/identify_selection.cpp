@@ -172,8 +172,9 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
 
 namespace {
 
-// The effect's parameters in `values` without its prefix.
-std::map<std::string, double> effectParams(const std::map<std::string, double>& values, const std::string& effect) {
+// The effect's values in a parameter map without their prefix (identify_loop.hpp's effectParams
+// does this for a fit's estimates; the leave-one-run-out refits are plain maps).
+std::map<std::string, double> effectValues(const std::map<std::string, double>& values, const std::string& effect) {
     std::map<std::string, double> p;
     const std::string prefix = effect + ".";
     for (const auto& [k, v] : values)
@@ -257,11 +258,12 @@ bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit
     const OperatingPoint op = info.size.value ? operatingPoint(cx) : OperatingPoint{};
     std::function<double(const std::map<std::string, double>&)> derived;
     if (info.size.value) derived = [&](const std::map<std::string, double>& p) { return info.size.value(p, op); };
-    const bool useDerived = derived && std::isfinite(derived(effectParams(fit.values, sc.name)));
+    const std::map<std::string, double> own = effectValues(fit.values, sc.name);
+    const bool useDerived = derived && std::isfinite(derived(own));
     const bool inverse = !useDerived && std::isinf(q.vanishing);
     const double none = useDerived || inverse ? 0.0 : effectVanishes(cx, sc.name, q);
     auto sizeOf = [&](const std::map<std::string, double>& values) {
-        if (useDerived) return derived(effectParams(values, sc.name));
+        if (useDerived) return derived(effectValues(values, sc.name));
         if (!values.count(key)) return kNaN;
         return inverse ? 1.0 / values.at(key) : values.at(key);
     };
@@ -272,7 +274,7 @@ bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit
     // The Jacobian standard error made honest for autocorrelated residuals (× sqrt(τ_int)).
     double jse = kNaN;
     if (useDerived) {
-        jse = derivedStderr(fit.fit, sc.name, effectParams(fit.values, sc.name), derived);
+        jse = derivedStderr(fit.fit, sc.name, own, derived);
     } else {
         for (const ParamEstimate& p : fit.estimates)
             if (p.name == key) jse = p.stderr_;
