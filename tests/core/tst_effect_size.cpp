@@ -106,6 +106,16 @@ private slots:
         QVERIFY2(byB.reason.find("is not identified") != std::string::npos, byB.reason.c_str());
     }
 
+    // paramOr: the value when present, NaN (never a throw, never a default that looks like a
+    // measurement) when a refit gave no values for the name.
+    void paramOrIsNaNForAMissingName() {
+        const std::map<std::string, double> p{{"b_heal", 0.012}, {"tc_s", 0.0}};
+        QCOMPARE(paramOr(p, "b_heal"), 0.012);
+        QCOMPARE(paramOr(p, "tc_s"), 0.0);
+        QVERIFY(std::isnan(paramOr(p, "Dh_m")));
+        QVERIFY(std::isnan(paramOr({}, "b_heal")));
+    }
+
     // Fewer than three leave-one-run-out fits: the Jacobian's standard error of the strength by
     // the delta method, g' Σ g with Σ from the fit's standard errors and correlations, × sqrt(τ).
     void strengthStderrIsTheDeltaMethodsWithoutRefits() {
