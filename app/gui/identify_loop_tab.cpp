@@ -202,7 +202,8 @@ void IdentifyLoopTab::showOutcome(const IdentifyOutcome& o) {
     else if (!resolution.isEmpty())
         unexplained_->setText(tr("<b>Numerical resolution</b>: %1").arg(resolution.toHtmlEscaped()));
     else
-        unexplained_->setText(tr("<b>No unexplained structure</b>: the final residual looks like noise."));
+        unexplained_->setText(tr("<b>No unexplained structure</b>: what is left of the residual is not predicted from run to "
+                                 "run by the runs' own state."));
     unexplained_->setStyleSheet(warn ? "QLabel { color: #9a5b00; }" : "QLabel { color: #2a6b2a; }");
     showBeforeAfter(r, added);
     showEffects(r);

@@ -412,7 +412,6 @@ Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation, dou
         d.whiteness.pValue = chiSquareSurvival(Qsum, lagsUsed);
         d.whiteness.white = d.whiteness.pValue >= 0.01;
         d.whiteness.structureRatio = diffSum > 0 ? varSum / diffSum - 1.0 : 0.0;
-        d.whiteness.structured = !d.whiteness.white && d.whiteness.structureRatio > Whiteness::kStructureRatioLimit;
     }
     if (!runs.empty() && runs[longest].t_s.size() > 4) {
         const DiagnosticRun& run = runs[longest];
@@ -421,6 +420,7 @@ Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation, dou
         // τ_int on the undecimated residual of the longest run.
         d.integratedAcfTime = integratedAcfTime(autocorrelation(run.residual, 200));
     }
+    d.structure = residualStructure(runs, vStick);
     return d;
 }
 

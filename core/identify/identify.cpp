@@ -315,7 +315,14 @@ void finishReport(Loop& L) {
     res.final = L.cur.estimates;  // effect parameters under "effect.param" names
     std::vector<std::vector<double>> predAfter;
     res.diagnosticsAfter = diagnoseModel(L.cx, L.spec, L.cur, &predAfter);
-    res.unexplained = res.diagnosticsAfter.whiteness.structured;
+    // Both channels (the equation of motion's where there are dynamics runs), each as an effect's
+    // held-out gain is judged.
+    std::string lawWhy, eomWhy;
+    const Diagnostics& da = res.diagnosticsAfter;
+    const bool law = structureRemains(da.structure, L.opt, lawWhy);
+    const bool eom = da.structureEom.runs > 0 && structureRemains(da.structureEom, L.opt, eomWhy);
+    res.unexplained = law || eom;
+    res.structureNote = "law channel: " + lawWhy + (eomWhy.empty() ? "" : "; equation of motion: " + eomWhy);
     if (!L.spec.segments) {
         double mass = kNaN;
         res.lawResolution = checkLawResolution(L.cx, buildModel(L.cx, L.spec, L.cur.values, mass), mass,
@@ -326,10 +333,9 @@ void finishReport(Loop& L) {
         auto top = std::max_element(cs.begin(), cs.end(), [](const auto& a, const auto& b) {
             return std::abs(a.correlation) < std::abs(b.correlation);
         });
-        res.unexplainedReason = "residual is not white after the loop (Ljung-Box p = " +
-                                fmt(res.diagnosticsAfter.whiteness.pValue) + ") and the structure is large (variance / "
-                                "successive-difference noise variance - 1 = " +
-                                fmt(res.diagnosticsAfter.whiteness.structureRatio) + "); largest correlation: " +
+        res.unexplainedReason = std::string("the residual left after the loop ") +
+                                (law && eom ? "in both channels" : law ? "in the law channel" : "in the equation of motion") +
+                                " is predicted from run to run by the runs' own state (" + res.structureNote + "); largest correlation: " +
                                 (top != cs.end() ? top->signal + " r = " + fmt(top->correlation) : "none") +
                                 "; no catalogue candidate lowered the penalised and held-out error further";
         if (const std::string t = lawResolutionText(res.lawResolution); !t.empty()) res.unexplainedReason += "; " + t;

@@ -518,8 +518,12 @@ struct IdentifyResult {
     std::vector<AddedEffect> effectsAdded;
     std::vector<CandidateScore> candidates;  // every candidate tried, last score
     Diagnostics diagnosticsBefore, diagnosticsAfter;
+    // Structure left that the runs' state predicts from run to run as consistently and as much as
+    // an added effect's held-out gain must be (detail::structureRemains on
+    // diagnosticsAfter.structure); the reason names the signal. structureNote: that test's
+    // figures either way.
     bool unexplained = false;
-    std::string unexplainedReason;
+    std::string unexplainedReason, structureNote;
     LawResolution lawResolution;  // of the final model
     FinalPolish polish;
     std::vector<RunTrace> traces;

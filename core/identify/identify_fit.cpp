@@ -418,20 +418,24 @@ Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome&
         // Equation-of-motion channel: its residual against the slider velocity and acceleration
         // (where rig damping and sensor inertia show).
         std::vector<double> rr, xd, xa;
+        std::vector<StructureRun> eom;
         const double zeta = m.effects.viscousDamping ? m.effects.viscousDamping->zeta : cx.opt->zetaNominal;
         const double ms = m.effects.sensorInertia ? m.effects.sensorInertia->mass_kg : 0.0;
         for (const Prepared& p : cx.runs) {
             if (p.run->setup != SetupKind::Dynamics) continue;
             const double mm = std::isfinite(mass) ? mass : p.run->nominalMass_kg;
             const double c = 2.0 * zeta * std::sqrt(p.run->stiffness_N_per_m * mm);
-            for (size_t i = 0; i < p.size(); ++i) {
-                rr.push_back(p.F[i] - ((mm + ms) * p.a[i] + c * p.xd[i] + p.run->stiffness_N_per_m * p.x[i]));
-                xd.push_back(p.xd[i]);
-                xa.push_back(p.a[i]);
-            }
+            StructureRun run{{}, {p.xd, p.a}};
+            for (size_t i = 0; i < p.size(); ++i)
+                run.residual.push_back(p.F[i] - ((mm + ms) * p.a[i] + c * p.xd[i] + p.run->stiffness_N_per_m * p.x[i]));
+            rr.insert(rr.end(), run.residual.begin(), run.residual.end());
+            xd.insert(xd.end(), p.xd.begin(), p.xd.end());
+            xa.insert(xa.end(), p.a.begin(), p.a.end());
+            eom.push_back(std::move(run));
         }
         d.correlations.push_back({"eom_slider_velocity", pearson(rr, xd)});
         d.correlations.push_back({"eom_slider_accel", pearson(rr, xa)});
+        d.structureEom = residualStructure(eom, {"eom_slider_velocity", "eom_slider_accel"});
     }
     return d;
 }

@@ -369,6 +369,17 @@ OperatingPoint operatingPoint(const Context& cx);
 // figures; false with sc.reason set when it does not.
 bool passesSizeTest(const Context& cx, CandidateScore& sc, const FitOutcome& fit,
                     const std::vector<std::map<std::string, double>>& loo, double tauInt);
+// The p of a paired held-out test as test (2) judges it (IdentifyOptions::heldOutMidP): the exact
+// sign-flip test's (mid-)p where it can decide (2^−K below heldOutAlpha), else the t-test's; `exact`
+// says which.
+double heldOutPValue(const PairedTest& pt, const IdentifyOptions& opt, bool& exact);
+// The "unexplained" verdict (IdentifyResult::unexplained): the final residual's structure that
+// the runs' state predicts from run to run (Diagnostics::structure) passes what an effect's
+// held-out gain must pass (test (2) with its relevance margin): with at least kMinUnitsForTests
+// runs the paired test at heldOutAlpha, with 2 every run better; and a mean gain of at least
+// minHeldOutGain of the MSE. Structure smaller than that could not be added as an effect either.
+// `why` says what was found either way.
+bool structureRemains(const StructureTest& st, const IdentifyOptions& opt, std::string& why);
 
 // The recovery self-test (self_test.hpp) around the fitted baseline `base` of `spec`; neffCap as
 // the loop's BIC uses it.

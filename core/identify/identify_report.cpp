@@ -31,6 +31,24 @@ nlohmann::json toJson(const ModelErrors& e) {
 
 }  // namespace
 
+static nlohmann::json structureJson(const StructureTest& s) {
+    nlohmann::json sig = nlohmann::json::array();
+    for (const SignalGain& g : s.bySignal) sig.push_back({{"signal", g.signal}, {"mean_log_mse_ratio", num(g.meanLogRatio)}});
+    nlohmann::json ratios = nlohmann::json::array();
+    for (double d : s.logRatios) ratios.push_back(num(d));
+    return {{"test", "runs held out in turn; residual predicted by a step function of the candidate signal and resolution that best predict the other runs from each other"},
+            {"runs", s.runs},
+            {"bins", s.bins},
+            {"log_mse_ratio_per_run", ratios},
+            {"signal_per_run", s.chosen},
+            {"mean_log_mse_ratio", num(s.test.meanLogRatio)},
+            {"t", num(s.test.t)},
+            {"p_t", num(s.test.pValue)},
+            {"p_exact", num(s.test.exactP)},
+            {"p_mid", num(s.test.midP)},
+            {"signals_alone", sig}};
+}
+
 nlohmann::json toJson(const Diagnostics& d, bool withSeries) {
     nlohmann::json corr = nlohmann::json::object();
     for (const SignalCorrelation& c : d.correlations) corr[c.signal] = num(c.correlation);
@@ -43,9 +61,9 @@ nlohmann::json toJson(const Diagnostics& d, bool withSeries) {
                           {"Q", num(d.whiteness.ljungBoxQ)},
                           {"p_value", num(d.whiteness.pValue)},
                           {"white", d.whiteness.white},
-                          {"structure_ratio", num(d.whiteness.structureRatio)},
-                          {"structure_ratio_limit", Whiteness::kStructureRatioLimit},
-                          {"structured", d.whiteness.structured}}},
+                          {"structure_ratio", num(d.whiteness.structureRatio)}}},
+                        {"structure", structureJson(d.structure)},
+                        {"structure_eom", structureJson(d.structureEom)},
                         {"integrated_acf_time_samples", num(d.integratedAcfTime)},
                         {"spectrum_harmonic_fraction", num(d.spectrum.harmonicFraction)},
                         {"forcing_harmonics_Hz", d.spectrum.harmonics_Hz}};
@@ -229,6 +247,7 @@ nlohmann::json toJson(const IdentifyResult& r) {
     j["diagnostics"] = {{"before", toJson(r.diagnosticsBefore, true)}, {"after", toJson(r.diagnosticsAfter, true)}};
     j["unexplained"] = r.unexplained;
     if (r.unexplained) j["unexplained_reason"] = r.unexplainedReason;
+    j["structure_note"] = r.structureNote;
     if (r.lawResolution.checked) {
         nlohmann::json runs = nlohmann::json::array();
         for (const LawResolution::Run& x : r.lawResolution.runs)

@@ -139,11 +139,11 @@ bool passesHeldOutTest(const IdentifyOptions& opt, CandidateScore& sc, const Mod
     // (mid-p 1/64). Not at K = 4, where the mid-p of "all four better" (1/32) would pass a pattern
     // whose null probability is 1/16: measured with four of the five runs of the shared sets, it
     // found D03's lag but added a false sensor mass on D09 (docs/identify-results.md, session 61).
-    const bool exactDecides = pt.units >= 1 && std::isfinite(pt.exactP) && std::ldexp(1.0, -pt.units) < opt.heldOutAlpha;
+    bool exactDecides = false;
+    sc.heldOutP = heldOutPValue(pt, opt, exactDecides);
     sc.heldOutExact = exactDecides;
     sc.heldOutMidP = exactDecides && opt.heldOutMidP;
     sc.heldOutExactP = pt.exactP;
-    sc.heldOutP = !exactDecides ? pt.pValue : opt.heldOutMidP ? pt.midP : pt.exactP;
     // With fewer than 3 held-out runs the paired t-test has at most one degree of freedom (the
     // spread of two log ratios; t_{0.95,1} = 6.31) and no power: every held-out run must then
     // improve instead (a weaker guard, reported as such).
@@ -239,6 +239,46 @@ OperatingPoint operatingPoint(const Context& cx) {
             break;
         }
     return op;
+}
+
+double heldOutPValue(const PairedTest& pt, const IdentifyOptions& opt, bool& exact) {
+    exact = pt.units >= 1 && std::isfinite(pt.exactP) && std::ldexp(1.0, -pt.units) < opt.heldOutAlpha;
+    return !exact ? pt.pValue : opt.heldOutMidP ? pt.midP : pt.exactP;
+}
+
+bool structureRemains(const StructureTest& st, const IdentifyOptions& opt, std::string& why) {
+    const PairedTest& pt = st.test;
+    if (pt.units < 2) {
+        why = "not tested: the structure test holds runs out in turn and needs at least 2 runs";
+        return false;
+    }
+    std::string perRun;
+    for (size_t i = 0; i < st.logRatios.size(); ++i)
+        perRun += (i ? ", " : "") + fmt(st.logRatios[i], "%.3g") + (i < st.chosen.size() && !st.chosen[i].empty() ? " (" + st.chosen[i] + ")" : "");
+    const std::string top = st.bySignal.empty() ? std::string("none")
+                                                : st.bySignal.front().signal + " (alone: mean log MSE ratio " +
+                                                      fmt(st.bySignal.front().meanLogRatio, "%.3g") + ")";
+    const std::string found = "held out in turn, each run's residual predicted by a step function of the signal that best "
+                              "predicts the other runs from each other: log MSE ratio per run " + perRun +
+                              "; mean " + fmt(pt.meanLogRatio, "%.3g") + "; strongest signal " + top;
+    bool consistent = true;
+    std::string test;
+    if (pt.units < kMinUnitsForTests) {
+        for (double d : st.logRatios) consistent = consistent && d > 0;
+        test = "every one of the " + std::to_string(pt.units) + " runs better (too few runs for a paired test): " +
+               (consistent ? "yes" : "no");
+    } else {
+        bool exact = false;
+        const double p = heldOutPValue(pt, opt, exact);
+        consistent = p < opt.heldOutAlpha;
+        test = std::string(exact ? (opt.heldOutMidP ? "exact sign-flip test, mid-p" : "exact sign-flip test") : "paired t-test") +
+               " one-sided p = " + fmt(p, "%.3g") + (consistent ? " < " : " >= ") + fmt(opt.heldOutAlpha);
+    }
+    const double need = opt.minHeldOutGain > 0 ? -std::log1p(-opt.minHeldOutGain) : 0.0;
+    const bool relevant = std::isfinite(pt.meanLogRatio) && pt.meanLogRatio >= need && pt.meanLogRatio > 0;
+    why = found + "; " + test + "; mean gain " + fmt(100.0 * -std::expm1(-pt.meanLogRatio), "%.1f") + " % of the MSE " +
+          (relevant ? ">= " : "< ") + "the relevance margin of " + fmt(100.0 * opt.minHeldOutGain, "%g") + " %";
+    return consistent && relevant;
 }
 
 // Test (3): the size is identified away from the value at which the effect vanishes.

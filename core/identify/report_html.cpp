@@ -142,11 +142,8 @@ void writeSummary(std::ostream& o, const IdentifyResult& r) {
     if (r.unexplained)
         o << "<p class=\"warn\">Unexplained structure remains: " << htmlEscape(r.unexplainedReason) << "</p>\n";
     else
-        o << "<p>No unexplained structure: the final residual is white (Ljung&ndash;Box p = "
-          << fmt(r.diagnosticsAfter.whiteness.pValue) << ") or its slowly varying part is small (variance / "
-             "successive-difference noise variance &minus; 1 = "
-          << fmt(r.diagnosticsAfter.whiteness.structureRatio, "%.3f") << " &le; " << Whiteness::kStructureRatioLimit
-          << ").</p>\n";
+        o << "<p>No unexplained structure: what is left of the residual is not predicted from run to run by the "
+             "runs' own state as an effect would have to be (" << htmlEscape(r.structureNote) << ").</p>\n";
     if (const std::string t = lawResolutionText(r.lawResolution); !t.empty() && !r.unexplained)
         o << "<p class=\"warn\">Numerical resolution: " << htmlEscape(t) << ".</p>\n";
     o << "<table><tr><th></th><th>fit NRMSE</th><th>held-out NRMSE</th></tr>"
