@@ -17,6 +17,16 @@ IdentifyResult runLoop(const ExtendedModel& truth, unsigned seed) {
     return identifyEffects(runs, synth::testOptions());
 }
 
+// The loop on runs made with `truth`, its effect not among the candidates (backlash and the
+// sensor mass only).
+IdentifyResult withoutItsCandidate(const ExtendedModel& truth, const char* what) {
+    auto o = synth::testOptions();
+    o.candidates = {"backlash", "sensor_inertia"};
+    const IdentifyResult r = identifyEffects(synth::makeRuns(truth, 2.0, 0.02, 2), o);
+    qInfo("%s without candidate: added %zu; %s", what, r.effectsAdded.size(), r.structureNote.c_str());
+    return r;
+}
+
 void expectFound(const IdentifyResult& r, const std::string& name) {
     QVERIFY2(r.ok, r.message.c_str());
     QVERIFY2(!r.effectsAdded.empty(), ("nothing added; expected " + name).c_str());
@@ -207,11 +217,8 @@ private slots:
     void structureWithoutCandidateIsUnexplained() {
         auto m = synth::trueModel();
         m.effects.directionAsymmetry = DirectionAsymmetry{0.05};
-        auto o = synth::testOptions();
-        o.candidates = {"backlash", "sensor_inertia"};
-        const IdentifyResult r = identifyEffects(synth::makeRuns(m, 2.0, 0.02, 2), o);
+        const IdentifyResult r = withoutItsCandidate(m, "asymmetry");
         QVERIFY2(r.ok, r.message.c_str());
-        qInfo("asymmetry without candidate: added %zu; %s", r.effectsAdded.size(), r.structureNote.c_str());
         QVERIFY(r.effectsAdded.empty());
         QVERIFY2(r.unexplained, r.structureNote.c_str());
         QVERIFY(r.unexplainedReason.find("signV") != std::string::npos);
@@ -225,11 +232,8 @@ private slots:
     void lagWithoutCandidateIsAKnownGap() {
         auto m = synth::trueModel();
         m.effects.frictionalLag = FrictionalLag{0.01};
-        auto o = synth::testOptions();
-        o.candidates = {"backlash", "sensor_inertia"};
-        const IdentifyResult r = identifyEffects(synth::makeRuns(m, 2.0, 0.02, 2), o);
+        const IdentifyResult r = withoutItsCandidate(m, "lag");
         QVERIFY2(r.ok, r.message.c_str());
-        qInfo("lag without candidate: added %zu; %s", r.effectsAdded.size(), r.structureNote.c_str());
         QEXPECT_FAIL("", "lag structure left after a stand-in does not repeat from run to run at this data size", Continue);
         QVERIFY(r.effectsAdded.empty() && r.unexplained);
     }
