@@ -55,8 +55,8 @@ struct Whiteness {
     // variance estimated from successive differences (von Neumann, σ²_n = Σ(r_i − r_{i−1})²/2(n−1)),
     // minus one. ≈ 0 (± 2/√n) for white noise; a slowly varying model error raises it, and so does
     // noise coloured by the measurement chain. No verdict rests on it: with thousands of samples
-    // Ljung–Box rejects for any colour, and a fixed limit on this ratio flagged 24 of 61 synthetic
-    // sets whose effects were all found (docs/identify-results.md, session 73). The verdict is
+    // Ljung–Box rejects for any colour, and a fixed limit on this ratio flagged 20 of the 59
+    // synthetic sets whose final model was exactly the answer key (docs/identify-results.md, session 73). The verdict is
     // Diagnostics::structure's.
     double structureRatio = 0;
 };
