@@ -91,11 +91,14 @@ void creditRestartGain(CandidateScore& sc, double ssFirst, double ssRefit) {
 namespace {
 
 // Test (2b): the mean held-out gain, as a fraction of the MSE, reaches the relevance margin.
+// The relevance margin as a mean log MSE ratio: ln(1/(1 − minHeldOutGain)).
+double relevanceNeed(const IdentifyOptions& opt) { return opt.minHeldOutGain > 0 ? -std::log1p(-opt.minHeldOutGain) : 0.0; }
+
 bool passesRelevance(const IdentifyOptions& opt, CandidateScore& sc) {
     // No held-out run (a single fit run and no validation runs): nothing to measure the gain on;
     // as with fewer than 3 runs, the weaker guards decide.
     if (!(opt.minHeldOutGain > 0) || sc.heldOutUnits == 0) return true;
-    const double need = -std::log1p(-opt.minHeldOutGain);
+    const double need = relevanceNeed(opt);
     if (std::isfinite(sc.heldOutMeanLogRatio) && sc.heldOutMeanLogRatio >= need) return true;
     sc.reason = "lowers the held-out error consistently over the " + std::to_string(sc.heldOutUnits) + " held-out runs, but by " +
                 fmt(100.0 * -std::expm1(-sc.heldOutMeanLogRatio), "%.1f") + " % of the MSE on average (mean log MSE ratio " +
@@ -274,7 +277,7 @@ bool structureRemains(const StructureTest& st, const IdentifyOptions& opt, std::
         test = std::string(exact ? (opt.heldOutMidP ? "exact sign-flip test, mid-p" : "exact sign-flip test") : "paired t-test") +
                " one-sided p = " + fmt(p, "%.3g") + (consistent ? " < " : " >= ") + fmt(opt.heldOutAlpha);
     }
-    const double need = opt.minHeldOutGain > 0 ? -std::log1p(-opt.minHeldOutGain) : 0.0;
+    const double need = relevanceNeed(opt);
     const bool relevant = std::isfinite(pt.meanLogRatio) && pt.meanLogRatio >= need && pt.meanLogRatio > 0;
     why = found + "; " + test + "; mean gain " + fmt(100.0 * -std::expm1(-pt.meanLogRatio), "%.1f") + " % of the MSE " +
           (relevant ? ">= " : "< ") + "the relevance margin of " + fmt(100.0 * opt.minHeldOutGain, "%g") + " %";
