@@ -361,7 +361,7 @@ Spectrum powerSpectrum(const std::vector<double>& x, double dt, double f0, int m
     return sp;
 }
 
-Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation, double vStick) {
+Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation, double vStick, StructureCheck structure) {
     Diagnostics d;
     const auto names = candidateSignalNames();
     std::vector<double> res;
@@ -420,7 +420,7 @@ Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation, dou
         // τ_int on the undecimated residual of the longest run.
         d.integratedAcfTime = integratedAcfTime(autocorrelation(run.residual, 200));
     }
-    d.structure = residualStructure(runs, vStick);
+    if (structure == StructureCheck::Run) d.structure = residualStructure(runs, vStick);
     return d;
 }
 

@@ -89,14 +89,16 @@ PairedTest pairedLogRatioTest(const std::vector<double>& before, const std::vect
 // Whether the residual has structure that the runs' own state predicts from run to run (the
 // "unexplained" verdict of identify). Each run in turn is held out. On the other runs, each
 // candidate signal's step function (the residual's mean in each quantile bin of the signal) at
-// each of five resolutions (¼ to 4× Rice's bin count) is scored by how well it predicts each of
-// those runs from the rest (inner leave-one-run-out); the best-scoring one is fitted on all of them
-// and predicts the held-out run; none with a positive inner score: no prediction. Per run,
-// d = ln(MSE of the residual / MSE left after subtracting the prediction), tested over the runs
-// as an effect's held-out gain is (pairedLogRatioTest). Noise, however coloured by the
-// measurement chain, is not predicted by another run's state (d ≤ 0 up to the step function's
-// variance); a model error that follows the state is, in every run. Signal and resolution are
-// chosen without the held-out run, so the test is honest about the choice.
+// each of five resolutions (¼ to 4× Rice's bin count), and its line per sign (r ≈ a + b x on each
+// side of x = 0: it interpolates between runs whose signal values differ, such as their normal
+// loads), is scored by how well it predicts each of those runs from the rest (inner
+// leave-one-run-out); the best-scoring one is fitted on all of them and predicts the held-out run;
+// none with a positive inner score: no prediction. Per run, d = ln(MSE of the residual / MSE left
+// after subtracting the prediction), tested over the runs as an effect's held-out gain is
+// (pairedLogRatioTest). Noise, however coloured by the measurement chain, is not predicted by
+// another run's state (d ≤ 0 up to the fit's variance); a model error that follows the state is,
+// in every run. Signal and feature are chosen without the held-out run, so the test is honest
+// about the choice.
 struct SignalGain {
     std::string signal;
     double meanLogRatio = 0;  // mean over the runs of d with this signal alone, fitted on the others
@@ -105,7 +107,7 @@ struct StructureTest {
     int runs = 0;                       // runs held out in turn (the paired test's units)
     int bins = 0;                       // base resolution: ceil(2 n^(1/3)) quantile bins (Rice's rule), n all samples
     std::vector<double> logRatios;      // per run, d as above
-    std::vector<std::string> chosen;    // per run, the signal and its bins chosen without it ("" = none)
+    std::vector<std::string> chosen;    // per run, the signal and its bins or line chosen without it ("" = none)
     PairedTest test;                    // over the runs (before: the residual's MSE, after: what is left)
     std::vector<SignalGain> bySignal;   // each signal alone, largest mean d first
 };
@@ -163,7 +165,10 @@ double jackknifeStderr(const std::vector<double>& leaveOneOut);
 
 // All diagnostics. The residual is decimated by `decimation` (≥ 1) before the whiteness test
 // so that the smoothing of the measurement chain (a 100 Hz low-pass at 1 kHz correlates
-// neighbouring samples) is not mistaken for model structure.
-Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation = 5, double stickVelocity_mps = 1e-3);
+// neighbouring samples) is not mistaken for model structure. The run-to-run structure test
+// (Diagnostics::structure, the costliest part) only with StructureCheck::Run.
+enum class StructureCheck { Run, Skip };
+Diagnostics diagnose(const std::vector<DiagnosticRun>& runs, int decimation = 5, double stickVelocity_mps = 1e-3,
+                     StructureCheck structure = StructureCheck::Run);
 
 }  // namespace stickslip::identify

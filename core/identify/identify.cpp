@@ -261,7 +261,7 @@ void addEffect(Loop& L, Round& R, Tried& chosen, const ModelErrors& me, double h
     L.curHeldOut = me.validationNrmse;
     L.res.after = me;
     L.curErrors = me;
-    L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr);
+    L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr, StructureCheck::Skip);
 }
 
 // One round: every candidate not yet in the model is fitted and scored; the best that passes

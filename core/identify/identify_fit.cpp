@@ -387,7 +387,8 @@ bool lawFitIsBetter(const FitOutcome& curveFit, const FitOutcome& lawFit) {
 bool neverMoved(const FitOutcome& f) { return f.ok && !(f.fit.cost < f.fit.initialCost * (1.0 - 1e-12)); }
 
 // Diagnostics of a fitted model's force residual (friction channel, samples compared).
-Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds) {
+Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds,
+                          StructureCheck structure) {
     double mass = kNaN;
     const ExtendedModel m = buildModel(cx, spec, f.values, mass);
     std::vector<DiagnosticRun> dr;
@@ -413,7 +414,7 @@ Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome&
     const double fs = cx.runs.empty() || cx.runs[0].size() < 2 ? 1.0 : 1.0 / (cx.runs[0].t[1] - cx.runs[0].t[0]);
     // Decimate to about 2× the 100 Hz measurement bandwidth before the whiteness test.
     const int dec = std::max(1, static_cast<int>(std::floor(fs / 200.0)));
-    Diagnostics d = diagnose(dr, dec, cx.opt->stickVelocity_mps);
+    Diagnostics d = diagnose(dr, dec, cx.opt->stickVelocity_mps, structure);
     if (cx.anyDynamics) {
         // Equation-of-motion channel: its residual against the slider velocity and acceleration
         // (where rig damping and sensor inertia show).
@@ -435,7 +436,7 @@ Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome&
         }
         d.correlations.push_back({"eom_slider_velocity", pearson(rr, xd)});
         d.correlations.push_back({"eom_slider_accel", pearson(rr, xa)});
-        d.structureEom = residualStructure(eom, {"eom_slider_velocity", "eom_slider_accel"});
+        if (structure == StructureCheck::Run) d.structureEom = residualStructure(eom, {"eom_slider_velocity", "eom_slider_accel"});
     }
     return d;
 }

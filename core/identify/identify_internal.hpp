@@ -297,7 +297,10 @@ bool neverMoved(const FitOutcome& f);
 ModelErrors errorsOf(const Context& cx, const Spec& spec, const FitOutcome& full, const std::vector<size_t>& fitIdx,
                      const std::vector<size_t>& valIdx, long& fits,
                      std::vector<std::map<std::string, double>>* loo = nullptr);
-Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds);
+// The structure tests (both channels) only with StructureCheck::Run: the loop's working
+// diagnostics need the correlations and τ_int, the reports all of it.
+Diagnostics diagnoseModel(const Context& cx, const Spec& spec, const FitOutcome& f, std::vector<std::vector<double>>* preds,
+                          StructureCheck structure = StructureCheck::Run);
 // The baseline's start: μ from the data (median |F|/t_N at the faster half of the slip rates) and
 // C1, η in proportion to the start law's; with `from`, every free law value from that law instead
 // of the options' start (the rest of the start map is left to the options).

@@ -36,7 +36,7 @@ static nlohmann::json structureJson(const StructureTest& s) {
     for (const SignalGain& g : s.bySignal) sig.push_back({{"signal", g.signal}, {"mean_log_mse_ratio", num(g.meanLogRatio)}});
     nlohmann::json ratios = nlohmann::json::array();
     for (double d : s.logRatios) ratios.push_back(num(d));
-    return {{"test", "runs held out in turn; residual predicted by a step function of the candidate signal and resolution that best predict the other runs from each other"},
+    return {{"test", "runs held out in turn; residual predicted by the step function (at one of five resolutions) or line per sign of the candidate signal that best predicts the other runs from each other"},
             {"runs", s.runs},
             {"bins", s.bins},
             {"log_mse_ratio_per_run", ratios},

@@ -182,7 +182,7 @@ void adoptCurrent(Loop& L, const std::string& note) {
         L.curErrors = errorsOf(L.cx, L.spec, L.cur, L.fitIdx, L.valIdx, L.res.fits);
     L.curHeldOut = L.curErrors.validationNrmse;
     L.res.after = L.curErrors;
-    L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr);
+    L.curDiag = diagnoseModel(L.cx, L.spec, L.cur, nullptr, StructureCheck::Skip);
     for (AddedEffect& ae : L.res.effectsAdded) ae.params = effectParams(L.cur, ae.name);
     AddedEffect& last = L.res.effectsAdded.back();
     last.heldOutAfter = L.curHeldOut;

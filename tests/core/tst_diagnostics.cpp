@@ -222,6 +222,15 @@ private slots:
         QVERIFY(best > 0.9);
         QVERIFY(!d.whiteness.white);
         QVERIFY(d.spectrum.harmonicFraction > 0.5);
+        // The run-to-run structure test runs by default and only then: skipping it changes nothing else.
+        QCOMPARE(d.structure.runs, 2);
+        const Diagnostics skipped = diagnose(runs, 5, 1e-3, StructureCheck::Skip);
+        QCOMPARE(skipped.structure.runs, 0);
+        QVERIFY(skipped.structure.logRatios.empty());
+        QCOMPARE(skipped.correlations.size(), d.correlations.size());
+        for (size_t k = 0; k < d.correlations.size(); ++k) QCOMPARE(skipped.correlations[k].correlation, d.correlations[k].correlation);
+        QCOMPARE(skipped.integratedAcfTime, d.integratedAcfTime);
+        QCOMPARE(skipped.whiteness.pValue, d.whiteness.pValue);
         // Pure noise: white.
         for (int r = 0; r < 2; ++r)
             for (int i = 0; i < 4000; ++i) runs[r].residual[i] = noise[r * 4000 + i];

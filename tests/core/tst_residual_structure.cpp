@@ -1,7 +1,7 @@
 // The "unexplained" verdict's test (diagnostics.hpp residualStructure, identify_internal.hpp
 // structureRemains): its false-alarm rate on coloured noise, its detection rate on a model error
 // that follows the state (ringing after each reversal), structure in one run only, too few runs,
-// another channel's named signals, and the p rule it shares with the effects' held-out test.
+// another channel's named signals, a load effect between runs, and the p rule it shares with the effects' held-out test.
 #include <QtTest/QtTest>
 
 #include <cmath>
@@ -18,7 +18,10 @@ namespace {
 // Five runs at 1 kHz of a sinusoidal slip (frequency and phase differ by run), residual = AR(1)
 // noise (φ = 0.9: coloured as a low-passed force is) + `ring` × e^{−t_rev/40 ms} cos(2π 30 Hz
 // t_rev) in the slip direction, t_rev the time since the last reversal, in the runs `ringing`.
-std::vector<DiagnosticRun> makeRuns(unsigned seed, double ring, std::vector<bool> ringing = std::vector<bool>(5, true)) {
+// `loadSlope` ≠ 0: run r presses with 8 + 3r N and its residual gains loadSlope × (N − 5 N) in
+// the slip direction (a friction coefficient that follows the normal load).
+std::vector<DiagnosticRun> makeRuns(unsigned seed, double ring, std::vector<bool> ringing = std::vector<bool>(5, true),
+                                    double loadSlope = 0.0) {
     std::mt19937 rng(seed);
     std::normal_distribution<double> nd(0.0, 1.0);
     std::uniform_real_distribution<double> ud(0.0, 1.0);
@@ -36,9 +39,11 @@ std::vector<DiagnosticRun> makeRuns(unsigned seed, double ring, std::vector<bool
             d.t_s.push_back(t);
             d.relVel_mps.push_back(0.05 * v);
             d.slip_m.push_back(0.05 * std::sin(2 * M_PI * f * t + ph) / (2 * M_PI * f));
-            d.residual.push_back(e + (ringing[r] ? ring * s * std::exp(-since / 0.04) * std::cos(2 * M_PI * 30 * since) : 0.0));
+            const double load = loadSlope != 0.0 ? 8.0 + 3.0 * static_cast<double>(r) : 10.0;
+            d.residual.push_back(e + (ringing[r] ? ring * s * std::exp(-since / 0.04) * std::cos(2 * M_PI * 30 * since) : 0.0) +
+                                 loadSlope * (load - 5.0) * s);
         }
-        d.normalForce_N = 10.0;
+        d.normalForce_N = loadSlope != 0.0 ? 8.0 + 3.0 * static_cast<double>(r) : 10.0;
         d.forcingFrequency_Hz = f;
         d.runIndex = static_cast<int>(r);
     }
@@ -80,6 +85,19 @@ private slots:
         QCOMPARE(QString::fromStdString(st.bySignal.front().signal), QString("time_since_reversal"));
         for (const std::string& c : st.chosen) QVERIFY2(c.rfind("time_since_reversal (", 0) == 0, c.c_str());
         QVERIFY(why.find("time_since_reversal") != std::string::npos);
+    }
+    // A friction coefficient that follows the normal load, each run at its own load (the residual
+    // 0.3–1.5 × the noise's SD in the slip direction): a step function of the load cannot predict
+    // a run whose load no other run has, a line per sign can, between the others' loads and beyond
+    // them. Found in at least 95 of 100 sets, through the load's line.
+    void detectsLoadStructureBetweenRuns() {
+        int found = 0;
+        for (unsigned seed = 1; seed <= 100; ++seed) found += verdict(makeRuns(seed, 0.0, std::vector<bool>(5, false), 0.1)) ? 1 : 0;
+        qInfo("detected: %d of 100", found);
+        QVERIFY2(found >= 95, qPrintable(QString::number(found)));
+        const StructureTest st = residualStructure(makeRuns(1, 0.0, std::vector<bool>(5, false), 0.1), 1e-3);
+        QCOMPARE(QString::fromStdString(st.bySignal.front().signal), QString("tN"));
+        for (const std::string& c : st.chosen) QVERIFY2(c.find("(line per sign)") != std::string::npos, c.c_str());
     }
     // A model error in one run only is that run's, not the model's: the other runs do not predict
     // it, and the four without it gain nothing.
