@@ -204,8 +204,8 @@ std::vector<Feature> buildFeatures(const std::vector<const StructureRun*>& runs,
     return features;
 }
 
-std::string describe(const Feature& f, const std::string& name) {
-    return name + (f.line ? " (line per sign)" : " (" + std::to_string(f.perRun.front().n.size()) + " bins)");
+std::string describe(const Feature& f, const std::vector<std::string>& names) {
+    return names[f.signal] + (f.line ? " (line per sign)" : " (" + std::to_string(f.perRun.front().n.size()) + " bins)");
 }
 
 }  // namespace
@@ -250,7 +250,7 @@ StructureTest residualStructure(const std::vector<StructureRun>& allRuns, const 
         out.logRatios.push_back(heldOutLogRatio(features, i, featuresOf(all), chosen, b, a));
         before.push_back(b);
         after.push_back(a);
-        out.chosen.push_back(chosen < 0 ? "" : describe(features[static_cast<size_t>(chosen)], names[static_cast<size_t>(chosen) / kPerSignal]));
+        out.chosen.push_back(chosen < 0 ? "" : describe(features[static_cast<size_t>(chosen)], names));
     }
     out.test = pairedLogRatioTest(before, after);
     for (size_t j = 0; j < names.size(); ++j) {
