@@ -82,6 +82,7 @@ public:
     QTabWidget* controlTabs() const { return controls_; }
     QTabWidget* plotTabs() const;
     widgets::SeriesPlot* overlayPlot() const;
+    IdentifyPlots* plots() const { return plots_; }
     QPushButton* fitRunButton() const;
     QPushButton* fitCancelButton() const;
     QPushButton* identifyRunButton() const;

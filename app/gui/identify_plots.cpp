@@ -46,6 +46,16 @@ IdentifyPlots::IdentifyPlots(QWidget* parent) : QWidget(parent) {
     plots_->addTab(spectrum_, tr("Spectrum"));
     plots_->addTab(acf_, tr("Autocorrelation"));
     plots_->addTab(correlations_, tr("Correlations"));
+    auto* structure = new QWidget(w);
+    auto* sv = new QVBoxLayout(structure);
+    structureSummary_ = new QLabel(structure);
+    structureSummary_->setWordWrap(true);
+    structureRuns_ = makeTable({tr("Run held out"), tr("d baseline"), tr("predicted by"), tr("d final"), tr("predicted by")}, structure);
+    structureSignals_ = makeTable({tr("Signal alone"), tr("mean d baseline"), tr("mean d final")}, structure);
+    sv->addWidget(structureSummary_);
+    sv->addWidget(structureRuns_, 3);
+    sv->addWidget(structureSignals_, 2);
+    plots_->addTab(structure, tr("Structure"));
     v->addWidget(plots_, 1);
     connect(run_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] { refresh(); });
 }
@@ -99,6 +109,7 @@ void IdentifyPlots::refresh() {
     residual_->setSeries(res);
     showDiagnostics(diag, diagAfter);
     showCorrelations(diag, diagAfter);
+    showStructure(diag, diagAfter);
 }
 
 const Diagnostics* IdentifyPlots::fitSeries(int k, Series& over, Series& res) {
@@ -180,6 +191,56 @@ void IdentifyPlots::showCorrelations(const Diagnostics* diag, const Diagnostics*
         setCell(correlations_, row, 2, std::isfinite(after) ? QString::number(after, 'f', 3) : QStringLiteral("–"));
     }
     correlations_->resizeColumnsToContents();
+}
+
+// The "unexplained" verdict's evidence (residualStructure): d = ln(MSE before / MSE after
+// subtracting what the other runs predict) per held-out run and per signal alone; d > 0 in every
+// run is structure that repeats from run to run. Nothing is computed here: the worker's result.
+void IdentifyPlots::showStructure(const Diagnostics* diag, const Diagnostics* diagAfter) {
+    structureRuns_->setRowCount(0);
+    structureSignals_->setRowCount(0);
+    if (!diag || diag->structure.runs < 2) {
+        structureSummary_->setText(tr("Run-to-run structure: not tested (it needs two runs or more)."));
+        return;
+    }
+    const StructureTest& b = diag->structure;
+    const bool identify = identify_ != nullptr;
+    // Nothing added: the final model is the baseline, and so is its test.
+    const StructureTest* a = diagAfter ? &diagAfter->structure : identify ? &b : nullptr;
+    auto summary = [](const StructureTest& t) {
+        return tr("mean d %1, sign-flip mid-p %2, t-test p %3").arg(t.test.meanLogRatio, 0, 'g', 3).arg(t.test.midP, 0, 'g', 2).arg(t.test.pValue, 0, 'g', 2);
+    };
+    structureSummary_->setText(
+        tr("Each run held out in turn, its residual predicted from the other runs by the step function or line per sign of "
+           "the signal they choose; d = ln(MSE before / after), > 0: the run's residual is predictable from its own state. "
+           "%1: %2.").arg(identify ? tr("Baseline") : tr("Residual"), summary(b)) +
+        (a == &b ? tr(" Final: the baseline (nothing added).") : a ? tr(" Final: %1.").arg(summary(*a)) : QString()));
+    QStringList names;
+    if (identify_ && static_cast<int>(identify_->result.traces.size()) == b.runs)
+        for (const RunTrace& t : identify_->result.traces) names << QFileInfo(QString::fromStdString(t.file)).fileName();
+    structureRuns_->setRowCount(b.runs);
+    for (int i = 0; i < b.runs; ++i) {
+        const size_t k = static_cast<size_t>(i);
+        setCell(structureRuns_, i, 0, i < names.size() ? names[i] : tr("run %1").arg(i + 1));
+        setCell(structureRuns_, i, 1, k < b.logRatios.size() ? QString::number(b.logRatios[k], 'f', 3) : QStringLiteral("–"));
+        setCell(structureRuns_, i, 2, k < b.chosen.size() && !b.chosen[k].empty() ? QString::fromStdString(b.chosen[k]) : tr("none"));
+        const bool haveA = a && k < a->logRatios.size();
+        setCell(structureRuns_, i, 3, haveA ? QString::number(a->logRatios[k], 'f', 3) : QStringLiteral("–"));
+        setCell(structureRuns_, i, 4, haveA && k < a->chosen.size() ? QString::fromStdString(a->chosen[k].empty() ? "none" : a->chosen[k]) : QStringLiteral("–"));
+    }
+    structureSignals_->setRowCount(static_cast<int>(b.bySignal.size()));
+    for (size_t j = 0; j < b.bySignal.size(); ++j) {
+        const int row = static_cast<int>(j);
+        setCell(structureSignals_, row, 0, QString::fromStdString(b.bySignal[j].signal));
+        setCell(structureSignals_, row, 1, QString::number(b.bySignal[j].meanLogRatio, 'f', 3));
+        double after = NAN;
+        if (a)
+            for (const SignalGain& g : a->bySignal)
+                if (g.signal == b.bySignal[j].signal) after = g.meanLogRatio;
+        setCell(structureSignals_, row, 2, std::isfinite(after) ? QString::number(after, 'f', 3) : QStringLiteral("–"));
+    }
+    structureRuns_->resizeColumnsToContents();
+    structureSignals_->resizeColumnsToContents();
 }
 
 }  // namespace stickslip::gui

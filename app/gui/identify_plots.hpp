@@ -1,5 +1,6 @@
 // The Identify panel's plots: measured versus predicted, residual, residual spectrum and
-// autocorrelation, and residual-signal correlations for one run of the last fit or identify.
+// autocorrelation, residual-signal correlations for one run of the last fit or identify, and the
+// run-to-run structure test behind the "unexplained" verdict (every run, every signal).
 // The outcomes belong to the panel (which outlives this child); the view keeps pointers so
 // that choosing another run redraws without a copy.
 #pragma once
@@ -29,6 +30,9 @@ public:
     void showFit(const FitOutcome* fit);
     void showIdentify(const IdentifyOutcome* identify);
     QTabWidget* tabs() const { return plots_; }
+    QTableWidget* structureRunsTable() const { return structureRuns_; }
+    QTableWidget* structureSignalsTable() const { return structureSignals_; }
+    QLabel* structureSummary() const { return structureSummary_; }
     widgets::SeriesPlot* overlayPlot() const { return overlay_; }
 
 private:
@@ -39,6 +43,7 @@ private:
     void identifySeries(int k, Series& over, Series& res);
     void showDiagnostics(const identify::Diagnostics* diag, const identify::Diagnostics* after);
     void showCorrelations(const identify::Diagnostics* diag, const identify::Diagnostics* after);
+    void showStructure(const identify::Diagnostics* diag, const identify::Diagnostics* after);
 
     const FitOutcome* fit_ = nullptr;             // what is shown: at most one of the two
     const IdentifyOutcome* identify_ = nullptr;
@@ -50,6 +55,9 @@ private:
     widgets::SeriesPlot* spectrum_ = nullptr;
     widgets::SeriesPlot* acf_ = nullptr;
     QTableWidget* correlations_ = nullptr;
+    QLabel* structureSummary_ = nullptr;
+    QTableWidget* structureRuns_ = nullptr;     // per run: d and the feature that predicted it
+    QTableWidget* structureSignals_ = nullptr;  // per signal alone: mean d
 };
 
 }  // namespace stickslip::gui

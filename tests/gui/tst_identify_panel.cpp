@@ -5,6 +5,7 @@
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QFile>
+#include <QFileInfo>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -24,6 +25,7 @@
 #include "core/identify/preprocess.hpp"
 #include "identify_loop_tab.hpp"
 #include "identify_panel.hpp"
+#include "identify_plots.hpp"
 #include "self_test_view.hpp"
 #include "main_window.hpp"
 #include "widgets/series_plot.hpp"
@@ -127,6 +129,26 @@ void checkReportExport(IdentifyPanel& p, const IdentifyResult& core) {
     IdentifyPanel empty;
     QVERIFY(!empty.exportIdentifyReport(dir.filePath("x.json"), dir.filePath("x.html"), &why));
     QVERIFY(!QFile::exists(dir.filePath("x.json")));
+}
+
+// The Structure tab shows the core's structure test as it is: one row per held-out run with its d
+// and the feature that predicted it, one row per signal alone, and the test's summary.
+void checkStructureTab(IdentifyPanel& p, const IdentifyResult& core) {
+    const StructureTest& b = core.diagnosticsBefore.structure;
+    QVERIFY(b.runs >= 2);
+    QTableWidget* runs = p.plots()->structureRunsTable();
+    QCOMPARE(runs->rowCount(), b.runs);
+    for (int i = 0; i < b.runs; ++i) {
+        QCOMPARE(cell(runs, i, 1), QString::number(b.logRatios[static_cast<size_t>(i)], 'f', 3));
+        const std::string& chosen = b.chosen[static_cast<size_t>(i)];
+        QCOMPARE(cell(runs, i, 2), chosen.empty() ? QString("none") : QString::fromStdString(chosen));
+    }
+    QCOMPARE(cell(runs, 0, 0), QFileInfo(QString::fromStdString(core.traces.front().file)).fileName());
+    QTableWidget* sig = p.plots()->structureSignalsTable();
+    QCOMPARE(sig->rowCount(), static_cast<int>(b.bySignal.size()));
+    QCOMPARE(cell(sig, 0, 0), QString::fromStdString(b.bySignal.front().signal));
+    QCOMPARE(cell(sig, 0, 1), QString::number(b.bySignal.front().meanLogRatio, 'f', 3));
+    QVERIFY(p.plots()->structureSummary()->text().contains(QString::number(b.test.meanLogRatio, 'g', 3)));
 }
 
 }  // namespace
@@ -369,6 +391,15 @@ private slots:
         QCOMPARE(r.unexplained, core.unexplained);
         checkBeforeAfterTable(p, core);
         if (QTest::currentTestFailed()) return;
+        checkStructureTab(p, core);
+        if (QTest::currentTestFailed()) return;
+        if (const QByteArray shot = qgetenv("STRUCTURE_SHOT"); !shot.isEmpty()) {
+            p.controlTabs()->setCurrentIndex(2);  // Identify
+            p.plotTabs()->setCurrentIndex(p.plotTabs()->count() - 1);  // Structure
+            p.resize(1900, 900);
+            QVERIFY(p.grab().save(QString::fromLocal8Bit(shot)));
+            p.plotTabs()->setCurrentIndex(0);
+        }
         if (const QByteArray shot = qgetenv("IDENTIFY_LOOP_SHOT"); !shot.isEmpty()) {
             p.controlTabs()->setCurrentIndex(2);  // Identify
             p.resize(1100, 1300);
