@@ -216,6 +216,29 @@ void writeParameters(std::ostream& o, const IdentifyResult& r) {
         o << "<tr><td class=l>" << htmlEscape(p.name) << "</td><td>" << fmt(p.value) << "</td><td>" << fmt(p.stderr_) << "</td></tr>\n";
 }
 
+// The "unexplained" verdict's evidence (residualStructure): per held-out run, d before and after
+// and the feature the other runs chose; the test's summary per model.
+void writeStructure(std::ostream& o, const IdentifyResult& r) {
+    const StructureTest& b = r.diagnosticsBefore.structure;
+    const StructureTest& a = r.diagnosticsAfter.structure;
+    if (b.runs < 2) return;
+    o << "<h3>Run-to-run structure</h3><p>Each run held out in turn, its residual predicted from the other runs by the step "
+         "function or line per sign of the signal they choose; d = ln(MSE before / after), &gt; 0: predictable from the "
+         "run's own state. Before: mean d " << fmt(b.test.meanLogRatio, "%.3g") << ", sign-flip mid-p " << fmt(b.test.midP, "%.3g")
+      << "; after: mean d " << fmt(a.test.meanLogRatio, "%.3g") << ", sign-flip mid-p " << fmt(a.test.midP, "%.3g") << ".</p>\n";
+    o << "<table><tr><th>run held out</th><th>d before</th><th>predicted by</th><th>d after</th><th>predicted by</th></tr>\n";
+    for (size_t i = 0; i < static_cast<size_t>(b.runs); ++i) {
+        const std::string name = b.runs == static_cast<int>(r.traces.size()) ? r.traces[i].file : "run " + std::to_string(i + 1);
+        auto d = [&](const StructureTest& t) { return i < t.logRatios.size() ? fmt(t.logRatios[i], "%.3f") : std::string("&ndash;"); };
+        auto by = [&](const StructureTest& t) {
+            return i < t.chosen.size() ? htmlEscape(t.chosen[i].empty() ? std::string("none") : t.chosen[i]) : std::string("&ndash;");
+        };
+        o << "<tr><td class=l>" << htmlEscape(name) << "</td><td>" << d(b) << "</td><td class=l>" << by(b) << "</td><td>" << d(a)
+          << "</td><td class=l>" << by(a) << "</td></tr>\n";
+    }
+    o << "</table>\n";
+}
+
 // Residual correlations with the candidate signals, whiteness, autocorrelation and spectrum.
 void writeDiagnostics(std::ostream& o, const IdentifyResult& r) {
     o << "</table>\n<h2>Residual diagnostics</h2><table><tr><th>signal</th><th>r before</th><th>r after</th></tr>\n";
@@ -228,6 +251,7 @@ void writeDiagnostics(std::ostream& o, const IdentifyResult& r) {
       << fmt(r.diagnosticsAfter.whiteness.pValue) << "; structure ratio before "
       << fmt(r.diagnosticsBefore.whiteness.structureRatio, "%.3f") << ", after "
       << fmt(r.diagnosticsAfter.whiteness.structureRatio, "%.3f") << ".</p>\n";
+    writeStructure(o, r);
     {
         std::vector<SvgSeries> acf;
         for (const auto* d : {&r.diagnosticsBefore, &r.diagnosticsAfter}) {

@@ -341,6 +341,37 @@ private slots:
         QVERIFY(has(page, "<tr><td class=l>round 1: &lt;lag&gt;</td><td>4.6</td><td>7.7</td><td>7</td></tr>"));
     }
 
+    // The verdict's evidence: one row per held-out run (its file, d before and after, the feature
+    // the other runs chose, "none" where none predicted), the tests' summary; no section when the
+    // test did not run (fewer than two runs, as in the handmade result).
+    void structureTableShowsEachHeldOutRun() {
+        IdentifyResult r = handMadeResult();
+        QVERIFY(!has(renderHtmlReport(r), "Run-to-run structure"));
+        r.traces.push_back(r.traces.front());
+        r.traces[1].file = "run_<2>.csv";
+        StructureTest& b = r.diagnosticsBefore.structure;
+        b.runs = 2;
+        b.logRatios = {0.25, -0.1};
+        b.chosen = {"tN (line per sign)", ""};
+        b.test.meanLogRatio = 0.075;
+        b.test.midP = 0.5;
+        StructureTest& a = r.diagnosticsAfter.structure;
+        a.runs = 2;
+        a.logRatios = {-0.01, -0.02};
+        a.chosen = {"signV (3 bins)", "V (12 bins)"};
+        a.test.meanLogRatio = -0.015;
+        a.test.midP = 0.875;
+        const std::string page = renderHtmlReport(r);
+        QVERIFY(has(page, "<h3>Run-to-run structure</h3>"));
+        QVERIFY(has(page, "Before: mean d 0.075, sign-flip mid-p 0.5; after: mean d -0.015, sign-flip mid-p 0.875."));
+        QVERIFY(has(page, "<tr><td class=l>run_01.csv</td><td>0.250</td><td class=l>tN (line per sign)</td><td>-0.010</td>"
+                          "<td class=l>signV (3 bins)</td></tr>"));
+        QVERIFY(has(page, "<tr><td class=l>run_&lt;2&gt;.csv</td><td>-0.100</td><td class=l>none</td><td>-0.020</td>"
+                          "<td class=l>V (12 bins)</td></tr>"));
+        const std::string problem = tagProblem(page);
+        QVERIFY2(problem.empty(), problem.c_str());
+    }
+
     // An added effect's law-step check (AddedEffect::LawStepGain): the shares of the fit's sum
     // of squares it removes at the law's step and at the finer one, in its rows of the table and
     // in the JSON, and the sentence the CLI and the Identify panel show (lawStepText); a dash, no
