@@ -218,6 +218,11 @@ void IdentifyPlots::showStructure(const Diagnostics* diag, const Diagnostics* di
     QStringList names;
     if (identify_ && static_cast<int>(identify_->result.traces.size()) == b.runs)
         for (const RunTrace& t : identify_->result.traces) names << QFileInfo(QString::fromStdString(t.file)).fileName();
+    if (fit_ && !fit_->fits.empty()) {  // the fit's diagnostics: its fitted runs, in order
+        for (const RunOverlay& o : fit_->fits.front().overlays)
+            if (o.role != "validation") names << QFileInfo(QString::fromStdString(o.file)).fileName();
+        if (names.size() != b.runs) names.clear();
+    }
     structureRuns_->setRowCount(b.runs);
     for (int i = 0; i < b.runs; ++i) {
         const size_t k = static_cast<size_t>(i);

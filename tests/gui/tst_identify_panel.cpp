@@ -295,6 +295,9 @@ private slots:
         QCOMPARE(p.overlayPlot()->seriesCount(), 3);
         QVERIFY(p.overlayPlot()->curve("measured")->dataSize() > 100);
         QVERIFY(p.fitStatus().contains("Done"));
+        // One fitted run: nothing to hold out against, and the Structure tab says so.
+        QVERIFY(p.plots()->structureSummary()->text().contains("not tested"));
+        QCOMPARE(p.plots()->structureRunsTable()->rowCount(), 0);
 
         // fit.json: the CLI's keys, the same numbers.
         QTemporaryDir dir;
