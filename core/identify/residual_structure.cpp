@@ -32,12 +32,10 @@ struct GroupSums {
 struct GroupFit {
     std::vector<double> a, b;
 };
-// Quantile bin edges of the sorted pooled values (interior edges, strictly increasing: ties merge
-// bins; non-finite values ignored).
-std::vector<double> quantileEdges(const std::vector<double>& sorted, int bins) {
-    std::vector<double> edges, v;
-    for (double x : sorted)
-        if (std::isfinite(x)) v.push_back(x);
+// Quantile bin edges of the sorted, finite pooled values `v` (interior edges, strictly increasing:
+// ties merge bins).
+std::vector<double> quantileEdges(const std::vector<double>& v, int bins) {
+    std::vector<double> edges;
     if (v.empty()) return edges;
     for (int b = 1; b < bins; ++b) {
         const double e = v[static_cast<size_t>(static_cast<double>(b) / bins * (v.size() - 1))];
@@ -178,7 +176,7 @@ std::vector<Feature> buildFeatures(const std::vector<const StructureRun*>& runs,
         pooled.reserve(total);
         for (const StructureRun* r : runs)  // the samples that have a residual (the law channel masks some)
             for (size_t q = 0; q < r->residual.size(); ++q)
-                if (std::isfinite(r->residual[q])) pooled.push_back(r->predictors[j][q]);
+                if (std::isfinite(r->residual[q]) && std::isfinite(r->predictors[j][q])) pooled.push_back(r->predictors[j][q]);
         std::sort(pooled.begin(), pooled.end());
         for (size_t k = 0; k < kPerSignal; ++k) {
             Feature f{j, k == std::size(kResolutions), std::vector<GroupSums>(runs.size())};
