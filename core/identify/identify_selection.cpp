@@ -90,10 +90,10 @@ void creditRestartGain(CandidateScore& sc, double ssFirst, double ssRefit) {
 
 namespace {
 
-// Test (2b): the mean held-out gain, as a fraction of the MSE, reaches the relevance margin.
 // The relevance margin as a mean log MSE ratio: ln(1/(1 − minHeldOutGain)).
 double relevanceNeed(const IdentifyOptions& opt) { return opt.minHeldOutGain > 0 ? -std::log1p(-opt.minHeldOutGain) : 0.0; }
 
+// Test (2b): the mean held-out gain, as a fraction of the MSE, reaches the relevance margin.
 bool passesRelevance(const IdentifyOptions& opt, CandidateScore& sc) {
     // No held-out run (a single fit run and no validation runs): nothing to measure the gain on;
     // as with fewer than 3 runs, the weaker guards decide.
